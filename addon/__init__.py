@@ -1,0 +1,56 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Polycube: deform meshes into their polycube, one shape key per solver iteration.
+
+Blender 3.x reads `bl_info`; Blender 4.2+ reads `blender_manifest.toml` beside this
+file. Everything else is imported relatively so the package works under either
+name (`polycube` or `bl_ext.<repository>.polycube`).
+"""
+
+bl_info = {
+    "name": "Polycube",
+    "author": "polycube developers",
+    "version": (0, 1, 0),
+    "blender": (3, 4, 0),
+    "location": "View3D > Sidebar > Polycube",
+    "description": "Deform meshes into their polycube, a shape key per iteration",
+    "category": "Mesh",
+}
+
+if "bpy" in locals():
+    # Reloading scripts (F3 > Reload Scripts) re-imports the submodules too.
+    import importlib
+    for _module in (
+        label_names, labels, label_cache, mesh_arrays, shape_keys, animation, report,
+        settings, preferences, object_run, solver_thread, scrub, operators, panel,
+    ):
+        importlib.reload(_module)
+
+import bpy
+
+from . import (
+    label_names, labels, label_cache, mesh_arrays, shape_keys, animation, report,
+    settings, preferences, object_run, solver_thread, scrub, operators, panel,
+)
+
+_classes = (
+    preferences.PolycubePreferences,
+    settings.PolycubeSceneSettings,
+    operators.OBJECT_OT_polycube_deform,
+    panel.VIEW3D_PT_polycube,
+)
+
+
+def register():
+    for cls in _classes:
+        bpy.utils.register_class(cls)
+    settings.register()
+    scrub.register()
+    label_cache.register()
+
+
+def unregister():
+    label_cache.unregister()
+    scrub.unregister()
+    settings.unregister()
+    for cls in reversed(_classes):
+        bpy.utils.unregister_class(cls)

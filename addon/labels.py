@@ -1,0 +1,154 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Per-face polycube labels as a Blender mesh stores them (DESIGN.md section 3).
+
+Three stores, strongest first:
+- our own INT face attribute `polycube_label` (values -1..5);
+- face maps (Blender 3.x), by name;
+- what Blender 4.0+ made of face maps: an INT face attribute `face_maps` holding
+  each face's old map index, plus one BOOLEAN face attribute per old map, named
+  after it.
+Faces left at -1 are unlabelled; the solver gives them their nearest axis.
+"""
+
+from typing import NamedTuple
+
+import numpy as np
+
+from .label_names import ACCEPTED_SPELLINGS, label_from_name
+from .polycube_native import LABEL_NAMES
+
+LABEL_ATTRIBUTE = "polycube_label"
+FACE_MAPS_ATTRIBUTE = "face_maps"
+
+
+class Labels(NamedTuple):
+    values: np.ndarray  # int32 per face, -1 = unlabelled
+    source: str         # where they came from, for the panel and the report
+
+
+def read_labels(obj):
+    """The labels of a mesh object; ValueError with one sentence when they are junk."""
+    mesh = obj.data
+    face_count = len(mesh.polygons)
+    attribute = mesh.attributes.get(LABEL_ATTRIBUTE)
+    if attribute is not None:
+        return Labels(_read_label_attribute(attribute, face_count), f"attribute {LABEL_ATTRIBUTE}")
+    if len(getattr(obj, "face_maps", ())):
+        return Labels(_read_face_maps(obj, face_count), "face maps")
+    attribute = mesh.attributes.get(FACE_MAPS_ATTRIBUTE)
+    if attribute is not None:
+        return Labels(_read_face_maps_attribute(mesh, attribute, face_count),
+                      f"attribute {FACE_MAPS_ATTRIBUTE}")
+    return Labels(np.full(face_count, -1, dtype=np.int32), "none")
+
+
+def label_counts(values):
+    """Faces per label in LABEL_NAMES order, then the unlabelled ones."""
+    counts = np.bincount(values + 1, minlength=len(LABEL_NAMES) + 1)
+    return [int(c) for c in counts[1:]], int(counts[0])
+
+
+def write_label_attribute(mesh, values):
+    attribute = mesh.attributes.get(LABEL_ATTRIBUTE)
+    if attribute is None:
+        attribute = mesh.attributes.new(LABEL_ATTRIBUTE, 'INT', 'FACE')
+    attribute.data.foreach_set("value", np.asarray(values, dtype=np.int32))
+
+
+def write_face_maps(obj, values):
+    """Blender 3.x only: one face map per label present, named as in LABEL_NAMES."""
+    values = np.asarray(values)
+    for label, name in enumerate(LABEL_NAMES):
+        faces = np.flatnonzero(values == label)
+        if len(faces):
+            face_map = obj.face_maps.get(name) or obj.face_maps.new(name=name)
+            face_map.add(faces.tolist())
+
+
+def _read_int_face_attribute(attribute, face_count):
+    if attribute.domain != 'FACE' or attribute.data_type != 'INT':
+        raise ValueError(
+            f"attribute {attribute.name} must be an integer face attribute, "
+            f"not {attribute.data_type} on {attribute.domain}")
+    values = np.empty(face_count, dtype=np.int32)
+    attribute.data.foreach_get("value", values)
+    return values
+
+
+def _read_label_attribute(attribute, face_count):
+    values = _read_int_face_attribute(attribute, face_count)
+    junk = (values < -1) | (values >= len(LABEL_NAMES))
+    if junk.any():
+        shown = ", ".join(str(v) for v in np.unique(values[junk])[:5])
+        raise ValueError(
+            f"attribute {LABEL_ATTRIBUTE} holds {shown} on {int(junk.sum())} faces, but labels are "
+            f"-1 (none) or 0..5 for {', '.join(LABEL_NAMES)}")
+    return values
+
+
+def _labels_from_map_indices(map_indices, map_names):
+    """Labels from face-map indices and the maps' names; junk names are an error."""
+    in_map = (map_indices >= 0) & (map_indices < len(map_names))
+    used = [int(i) for i in np.unique(map_indices[in_map])]
+    unnamed = [i for i in used if map_names[i] is None]
+    if unnamed:
+        raise ValueError(
+            f"face map {unnamed[0]} in attribute {FACE_MAPS_ATTRIBUTE} has no boolean face "
+            f"attribute giving its name")
+    unknown = [map_names[i] for i in used if label_from_name(map_names[i]) is None]
+    if unknown:
+        names = ", ".join(f"'{name}'" for name in unknown)
+        plural = len(unknown) > 1
+        raise ValueError(
+            f"face map{'s' if plural else ''} {names} {'are' if plural else 'is'} not "
+            f"an axis; name face maps {ACCEPTED_SPELLINGS}")
+    # One slot past the maps stands for "in no map".
+    table = np.full(len(map_names) + 1, -1, dtype=np.int32)
+    for i in used:
+        table[i] = label_from_name(map_names[i])
+    return table[np.where(in_map, map_indices, len(map_names))]
+
+
+def _read_face_maps(obj, face_count):
+    mesh = obj.data
+    if not len(mesh.face_maps):
+        # Face maps exist on the object but no face was ever assigned to one.
+        return np.full(face_count, -1, dtype=np.int32)
+    map_indices = np.empty(face_count, dtype=np.int32)
+    mesh.face_maps[0].data.foreach_get("value", map_indices)
+    return _labels_from_map_indices(map_indices, [face_map.name for face_map in obj.face_maps])
+
+
+def _read_face_maps_attribute(mesh, attribute, face_count):
+    map_indices = _read_int_face_attribute(attribute, face_count)
+    map_count = int(map_indices.max()) + 1 if face_count else 0
+    return _labels_from_map_indices(map_indices, _face_map_names(mesh, map_indices, map_count))
+
+
+def _face_map_names(mesh, map_indices, map_count):
+    """Name each old face map after the boolean face attribute that matches its faces.
+
+    Blender 4.0 keeps no index-to-name table, so match by content: map i is named
+    after the BOOLEAN face attribute whose faces overlap {face_maps == i} best
+    (intersection over union above one half; among equals an axis name wins, since
+    Blender's own booleans such as sharp_face may coincide with a map).
+    """
+    candidates = []
+    for attribute in mesh.attributes:
+        if (attribute.domain == 'FACE' and attribute.data_type == 'BOOLEAN'
+                and not attribute.name.startswith(".")):
+            flags = np.empty(len(map_indices), dtype=bool)
+            attribute.data.foreach_get("value", flags)
+            candidates.append((attribute.name, flags))
+    names = []
+    for index in range(map_count):
+        members = map_indices == index
+        best, best_score = None, (0.5, False)
+        for name, flags in candidates:
+            union = np.count_nonzero(members | flags)
+            score = (np.count_nonzero(members & flags) / union if union else 0.0,
+                     label_from_name(name) is not None)
+            if score > best_score:
+                best, best_score = name, score
+        names.append(best)
+    return names

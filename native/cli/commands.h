@@ -1,0 +1,13 @@
+// The subcommands of the `polycube` program. Each takes the arguments after its
+// name, returns the exit code, and throws Error for anything the user must fix.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace polycube {
+
+extern const char* const kDeformUsage;
+int deform_command(const std::vector<std::string>& args);
+
+}  // namespace polycube

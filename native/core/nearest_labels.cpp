@@ -1,0 +1,14 @@
+#include "core/nearest_labels.h"
+
+#include "core/axis.h"
+#include "core/triangulate.h"
+
+namespace polycube {
+
+std::vector<int> nearest_labels(const PolygonMesh& mesh) {
+  std::vector<int> labels(mesh.faces.count());
+  for (int f = 0; f < mesh.faces.count(); ++f) labels[f] = nearest_axis(newell_normal(mesh.vertices, mesh.faces, f));
+  return labels;
+}
+
+}  // namespace polycube

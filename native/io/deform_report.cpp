@@ -1,0 +1,37 @@
+#include "io/deform_report.h"
+
+namespace polycube {
+
+void add_figures(JsonWriter& json, const Figures& f) {
+  json.add("normal_deviation_max_deg", f.normal_deviation_max_deg)
+      .add("normal_deviation_mean_deg", f.normal_deviation_mean_deg)
+      .add("edge_error", f.edge_error)
+      .add("area_error", f.area_error)
+      .add("flipped_faces", f.flipped_faces)
+      .add("collapsed_faces", f.collapsed_faces);
+}
+
+std::string deform_report_json(const PolygonMesh& mesh, const DeformResult& r, const DeformOptions& options) {
+  JsonWriter json;
+  json.add("vertices", static_cast<long>(mesh.vertices.rows()))
+      .add("faces", mesh.faces.count())
+      .add("triangles", r.triangles)
+      .add("variant", variant_name(options.variant))
+      .add("tolerance_deg", options.tolerance_deg)
+      .add("iterations", r.iterations)
+      .add("converged", r.converged)
+      .add("stopped", r.stopped)
+      .add("unlabelled_faces", r.unlabelled_faces);
+  add_figures(json, r.figures);
+  json.begin_object("seconds")
+      .add("total", r.seconds.total)
+      .add("assemble", r.seconds.assemble)
+      .add("factorize", r.seconds.factorize)
+      .add("rotations", r.seconds.rotations)
+      .add("solve", r.seconds.solve)
+      .add("measure", r.seconds.measure)
+      .end();
+  return json.str();
+}
+
+}  // namespace polycube

@@ -1,0 +1,20 @@
+// The report of a deformation run as JSON: the one place its keys are named,
+// so the command-line report, the Python module's dict and the Blender panel
+// agree (DESIGN.md section 4 for the figures).
+#pragma once
+
+#include <string>
+
+#include "core/deform.h"
+#include "io/json_writer.h"
+
+namespace polycube {
+
+// Adds the figures of section 4 as members of the innermost open object.
+void add_figures(JsonWriter& json, const Figures& figures);
+
+// vertices, faces, triangles, iterations, converged, stopped, unlabelled_faces,
+// variant, tolerance_deg, the figures, and seconds per phase.
+std::string deform_report_json(const PolygonMesh& mesh, const DeformResult& result, const DeformOptions& options);
+
+}  // namespace polycube

@@ -1,0 +1,22 @@
+// Reads and writes per-face labels as a text file: one integer per face, in
+// face order (0..5 = +X,-X,+Y,-Y,+Z,-Z, -1 = unlabelled; DESIGN.md section
+// 3). Plain text so labels can be made by any script and fixed by hand.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace polycube {
+
+// Values are separated by any whitespace; '#' starts a comment to the end of
+// the line. Throws Error with one sentence naming the path (and line) on a
+// missing file, a non-integer, a value outside -1..5, or a count different
+// from face_count.
+std::vector<int> read_labels(const std::string& path, int face_count);
+
+// One label per line after a comment stating the convention; atomic like
+// write_mesh. Throws Error if a value is outside -1..5 or the file cannot be
+// written.
+void write_labels(const std::string& path, const std::vector<int>& labels);
+
+}  // namespace polycube

@@ -1,0 +1,172 @@
+// Mesh writers. Each format is built in memory and handed to
+// write_file_atomically in one piece: simple, fast (one system call), and a
+// failure midway (disk full) cannot leave a truncated mesh where a good one
+// was. The mesh is checked first, so we never write a file read_mesh would
+// reject.
+#include "io/write_mesh.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
+namespace polycube {
+namespace {
+
+[[noreturn]] void fail(const std::string& path, const std::string& what) {
+  throw Error("cannot write " + path + ": " + what);
+}
+
+void check_mesh(const std::string& path, const Vertices& v, const PolygonFaces& f) {
+  if (f.offsets.empty() || f.offsets.front() != 0 ||
+      f.offsets.back() != static_cast<long long>(f.indices.size()))
+    fail(path, "the face offsets do not match the face indices");
+  for (int i = 0; i < f.count(); ++i) {
+    if (f.size(i) < 3)
+      fail(path, "face " + std::to_string(i) + " has " + std::to_string(f.size(i)) +
+                     " vertices, a face needs at least 3");
+    for (int k = f.offsets[i]; k < f.offsets[i + 1]; ++k)
+      if (f.indices[k] < 0 || f.indices[k] >= v.rows())
+        fail(path, "face " + std::to_string(i) + " uses vertex " + std::to_string(f.indices[k]) +
+                       ", but there are only " + std::to_string(v.rows()) + " vertices");
+  }
+  for (Eigen::Index i = 0; i < v.rows(); ++i)
+    if (!v.row(i).allFinite())
+      fail(path, "vertex " + std::to_string(i) + " has a non-finite coordinate");
+}
+
+// Shortest text that reads back to the same double (std::to_chars).
+void put(std::string& out, double x) {
+  char buf[32];
+  out.append(buf, std::to_chars(buf, buf + sizeof buf, x).ptr);
+}
+
+void put(std::string& out, long long x) {
+  char buf[24];
+  out.append(buf, std::to_chars(buf, buf + sizeof buf, x).ptr);
+}
+
+// "x y z\n"
+void put_vertex(std::string& out, const Vertices& v, Eigen::Index i) {
+  put(out, v(i, 0));
+  out += ' ';
+  put(out, v(i, 1));
+  out += ' ';
+  put(out, v(i, 2));
+  out += '\n';
+}
+
+std::string obj_text(const Vertices& v, const PolygonFaces& f) {
+  std::string out = "# polycube: " + std::to_string(v.rows()) + " vertices, " +
+                    std::to_string(f.count()) + " faces\n";
+  out.reserve(v.rows() * 64 + f.indices.size() * 9 + f.count() * 3);
+  for (Eigen::Index i = 0; i < v.rows(); ++i) {
+    out += "v ";
+    put_vertex(out, v, i);
+  }
+  for (int i = 0; i < f.count(); ++i) {
+    out += 'f';
+    for (int k = f.offsets[i]; k < f.offsets[i + 1]; ++k) {
+      out += ' ';
+      put(out, f.indices[k] + 1LL);  // OBJ counts from 1
+    }
+    out += '\n';
+  }
+  return out;
+}
+
+std::string off_text(const Vertices& v, const PolygonFaces& f) {
+  std::string out = "OFF\n" + std::to_string(v.rows()) + " " + std::to_string(f.count()) + " 0\n";
+  out.reserve(v.rows() * 64 + f.indices.size() * 9 + f.count() * 4);
+  for (Eigen::Index i = 0; i < v.rows(); ++i) put_vertex(out, v, i);
+  for (int i = 0; i < f.count(); ++i) {
+    put(out, static_cast<long long>(f.size(i)));
+    for (int k = f.offsets[i]; k < f.offsets[i + 1]; ++k) {
+      out += ' ';
+      put(out, static_cast<long long>(f.indices[k]));
+    }
+    out += '\n';
+  }
+  return out;
+}
+
+// Appends the little-endian bytes of x.
+template <class T>
+void put_le(std::string& out, T x) {
+  char b[sizeof(T)];
+  std::memcpy(b, &x, sizeof(T));
+  const uint16_t one = 1;
+  if (*reinterpret_cast<const unsigned char*>(&one) == 0) std::reverse(b, b + sizeof(T));
+  out.append(b, sizeof(T));
+}
+
+std::string ply_bytes(const Vertices& v, const PolygonFaces& f) {
+  // Faces with more than 255 corners need a wider length than the usual uchar.
+  int largest = 0;
+  for (int i = 0; i < f.count(); ++i) largest = std::max(largest, f.size(i));
+  bool wide = largest > 255;
+  std::string out =
+      "ply\nformat binary_little_endian 1.0\ncomment written by polycube\n"
+      "element vertex " + std::to_string(v.rows()) +
+      "\nproperty double x\nproperty double y\nproperty double z\n"
+      "element face " + std::to_string(f.count()) +
+      (wide ? "\nproperty list int int vertex_indices\n" : "\nproperty list uchar int vertex_indices\n") +
+      "end_header\n";
+  out.reserve(out.size() + v.rows() * 24 + f.indices.size() * 4 + f.count() * (wide ? 4 : 1));
+  for (Eigen::Index i = 0; i < v.rows(); ++i)
+    for (int c = 0; c < 3; ++c) put_le(out, v(i, c));
+  for (int i = 0; i < f.count(); ++i) {
+    if (wide)
+      put_le<int32_t>(out, f.size(i));
+    else
+      put_le<uint8_t>(out, static_cast<uint8_t>(f.size(i)));
+    for (int k = f.offsets[i]; k < f.offsets[i + 1]; ++k) put_le<int32_t>(out, f.indices[k]);
+  }
+  return out;
+}
+
+}  // namespace
+
+void write_file_atomically(const std::string& path, std::string_view bytes) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) fail(path, "it is a directory");
+  const std::string tmp = path + ".tmp";
+  std::FILE* file = std::fopen(tmp.c_str(), "wb");
+  if (!file) {
+    int err = errno;
+    fs::path parent = fs::path(path).parent_path();
+    if (!parent.empty() && !fs::is_directory(parent, ec))
+      fail(path, "directory " + parent.string() + " does not exist");
+    fail(path, std::strerror(err));
+  }
+  bool ok = std::fwrite(bytes.data(), 1, bytes.size(), file) == bytes.size();
+  int err = errno;
+  // fclose flushes, so a full disk may only show here.
+  if (std::fclose(file) != 0 && ok) {
+    ok = false;
+    err = errno;
+  }
+  if (ok) fs::rename(tmp, path, ec);
+  if (!ok || ec) {
+    std::remove(tmp.c_str());
+    fail(path, ok ? ec.message() : std::strerror(err));
+  }
+}
+
+void write_mesh(const std::string& path, const Vertices& v, const PolygonFaces& f) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != ".obj" && ext != ".off" && ext != ".ply")
+    fail(path, ext.empty() ? "no file extension, expected .obj, .off or .ply"
+                           : "unknown mesh format '" + ext + "', expected .obj, .off or .ply");
+  check_mesh(path, v, f);
+  write_file_atomically(path, ext == ".obj" ? obj_text(v, f) : ext == ".off" ? off_text(v, f) : ply_bytes(v, f));
+}
+
+}  // namespace polycube

@@ -1,0 +1,26 @@
+// Writes a polygon mesh as .obj, .off or .ply (binary little-endian),
+// chosen by extension (any case), so results can be opened in any viewer and
+// read back bit-exactly by read_mesh.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "core/mesh.h"
+
+namespace polycube {
+
+// Coordinates are written with the shortest text that reads back to the
+// same double (or as raw doubles in PLY), so a round trip is lossless.
+// Throws Error with one sentence naming the path if the extension is
+// unknown, the mesh is inconsistent (index out of range, face with fewer
+// than 3 vertices, non-finite coordinate) or the file cannot be written.
+// An existing file at path is replaced only once the new one is complete.
+void write_mesh(const std::string& path, const Vertices& v, const PolygonFaces& f);
+
+// Writes bytes to path + ".tmp", then renames it over path, so a failure
+// never leaves a partial file behind. Throws Error naming the path. Shared
+// with write_labels.
+void write_file_atomically(const std::string& path, std::string_view bytes);
+
+}  // namespace polycube

@@ -1,0 +1,156 @@
+// The Python face of the core: numpy arrays in and out, options as keyword
+// arguments, the GIL released while computing, every failure a ValueError
+// (bad input) or RuntimeError (a solve that broke down) with one clear sentence.
+#include <pybind11/functional.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cstring>
+
+#include "core/axis.h"
+#include "core/check_input.h"
+#include "core/deform.h"
+#include "core/nearest_labels.h"
+#include "core/quality.h"
+#include "core/triangulate.h"
+#include "io/deform_report.h"
+
+namespace py = pybind11;
+using namespace polycube;
+
+namespace {
+
+using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
+using IntArray = py::array_t<int, py::array::c_style | py::array::forcecast>;
+
+Vertices to_vertices(const DoubleArray& array, const char* name) {
+  if (array.ndim() != 2 || array.shape(1) != 3)
+    throw py::value_error(std::string(name) + " must be an (n, 3) array, got shape " +
+                          std::string(py::str(py::tuple(py::cast(std::vector<py::ssize_t>(
+                              array.shape(), array.shape() + array.ndim()))))));
+  Vertices v(array.shape(0), 3);
+  if (array.size() > 0) std::memcpy(v.data(), array.data(), sizeof(double) * array.size());
+  return v;
+}
+
+std::vector<int> to_ints(const IntArray& array, const char* name) {
+  if (array.ndim() != 1) throw py::value_error(std::string(name) + " must be a flat (1-D) array");
+  return std::vector<int>(array.data(), array.data() + array.size());
+}
+
+PolygonMesh to_mesh(const DoubleArray& vertices, const IntArray& face_indices, const IntArray& face_sizes) {
+  PolygonMesh mesh;
+  mesh.vertices = to_vertices(vertices, "vertices");
+  mesh.faces.indices = to_ints(face_indices, "face_indices");
+  const std::vector<int> sizes = to_ints(face_sizes, "face_sizes");
+  mesh.faces.offsets.resize(sizes.size() + 1);
+  long total = 0;
+  for (size_t f = 0; f < sizes.size(); ++f) {
+    if (sizes[f] < 3)
+      throw py::value_error("face " + std::to_string(f) + " has " + std::to_string(sizes[f]) +
+                            " corners; every face needs at least 3");
+    total += sizes[f];
+    if (total > static_cast<long>(mesh.faces.indices.size())) break;
+    mesh.faces.offsets[f + 1] = static_cast<int>(total);
+  }
+  if (total != static_cast<long>(mesh.faces.indices.size()))
+    throw py::value_error("face_sizes add up to " + std::to_string(total) + " corners, but face_indices has " +
+                          std::to_string(mesh.faces.indices.size()));
+  return mesh;
+}
+
+py::array_t<double> to_numpy(const Vertices& v) {
+  py::array_t<double> out({static_cast<py::ssize_t>(v.rows()), py::ssize_t{3}});
+  if (v.size() > 0) std::memcpy(out.mutable_data(), v.data(), sizeof(double) * v.size());
+  return out;
+}
+
+py::object json_loads(const std::string& text) { return py::module_::import("json").attr("loads")(text); }
+
+py::dict figures_dict(const Figures& figures) {
+  JsonWriter json;
+  add_figures(json, figures);
+  return json_loads(json.str(0));
+}
+
+py::dict deform_py(const DoubleArray& vertices, const IntArray& face_indices, const IntArray& face_sizes,
+                   const IntArray& labels, int iterations, double tolerance, const std::string& variant,
+                   const std::optional<py::function>& callback) {
+  PolygonMesh mesh = to_mesh(vertices, face_indices, face_sizes);
+  const std::vector<int> face_labels = to_ints(labels, "labels");
+  DeformOptions options;
+  options.iterations = iterations;
+  options.tolerance_deg = tolerance;
+  options.variant = parse_variant(variant);
+
+  IterationCallback on_iteration;
+  if (callback) {
+    on_iteration = [&callback](int iteration, const Vertices& positions, const Figures& figures) {
+      py::gil_scoped_acquire gil;
+      py::dict f = figures_dict(figures);
+      f["iteration"] = iteration;
+      const py::object answer = (*callback)(iteration, to_numpy(positions), f);
+      return answer.is_none() || answer.cast<bool>();
+    };
+  }
+  DeformResult result;
+  {
+    py::gil_scoped_release release;
+    result = deform(mesh, face_labels, options, on_iteration);
+  }
+  py::dict out;
+  out["positions"] = to_numpy(result.positions);
+  out["labels"] = py::array_t<int>(static_cast<py::ssize_t>(result.labels.size()), result.labels.data());
+  out["report"] = json_loads(deform_report_json(mesh, result, options));
+  return out;
+}
+
+py::array_t<int> nearest_labels_py(const DoubleArray& vertices, const IntArray& face_indices,
+                                   const IntArray& face_sizes) {
+  const PolygonMesh mesh = to_mesh(vertices, face_indices, face_sizes);
+  check_input(mesh);
+  const std::vector<int> labels = nearest_labels(mesh);
+  return py::array_t<int>(static_cast<py::ssize_t>(labels.size()), labels.data());
+}
+
+py::dict figures_py(const DoubleArray& input, const DoubleArray& output, const IntArray& face_indices,
+                    const IntArray& face_sizes, const IntArray& labels) {
+  const PolygonMesh mesh = to_mesh(input, face_indices, face_sizes);
+  const Vertices out = to_vertices(output, "output_vertices");
+  if (out.rows() != mesh.vertices.rows())
+    throw py::value_error("output_vertices has " + std::to_string(out.rows()) + " rows but input_vertices has " +
+                          std::to_string(mesh.vertices.rows()));
+  std::vector<int> face_labels = to_ints(labels, "labels");
+  check_input(mesh, &face_labels);
+  const std::vector<int> nearest = nearest_labels(mesh);
+  for (size_t f = 0; f < face_labels.size(); ++f)
+    if (face_labels[f] == kUnlabelled) face_labels[f] = nearest[f];
+  const Triangulation triangulation = triangulate(mesh.vertices, mesh.faces);
+  std::vector<int> triangle_labels(triangulation.face_of_triangle.size());
+  for (size_t t = 0; t < triangle_labels.size(); ++t)
+    triangle_labels[t] = face_labels[triangulation.face_of_triangle[t]];
+  return figures_dict(QualityMeasure(mesh.vertices, triangulation.triangles, triangle_labels).measure(out));
+}
+
+}  // namespace
+
+PYBIND11_MODULE(polycube_native, m) {
+  m.doc() = "Polycube deformation (Zhao et al.): the native solver of the polycube Blender add-on.";
+  py::register_exception<Error>(m, "Error", PyExc_ValueError);
+  m.attr("LABEL_NAMES") = py::make_tuple("+X", "-X", "+Y", "-Y", "+Z", "-Z");
+
+  m.def("deform", &deform_py, py::arg("vertices"), py::arg("face_indices"), py::arg("face_sizes"),
+        py::arg("labels"), py::kw_only(), py::arg("iterations") = 100, py::arg("tolerance") = 0.5,
+        py::arg("variant") = "fixed", py::arg("callback") = py::none(),
+        R"(Deform a mesh towards its polycube.
+
+vertices (n, 3) float; face_indices: all face corners, flat; face_sizes: corners per face;
+labels: per face, 0..5 = +X, -X, +Y, -Y, +Z, -Z, -1 = nearest axis.
+callback(iteration, positions, figures) is called after every iteration; returning False stops.
+Returns {"positions", "labels", "report"}. Raises ValueError on bad input.)");
+  m.def("nearest_labels", &nearest_labels_py, py::arg("vertices"), py::arg("face_indices"), py::arg("face_sizes"),
+        "Label every face by the axis nearest its normal.");
+  m.def("figures", &figures_py, py::arg("input_vertices"), py::arg("output_vertices"), py::arg("face_indices"),
+        py::arg("face_sizes"), py::arg("labels"), "The quality figures of output against input (DESIGN.md section 4).");
+}
