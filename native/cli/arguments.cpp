@@ -21,7 +21,7 @@ Arguments::Arguments(const std::vector<std::string>& args, const std::set<std::s
     if (flags.count(name)) {
       values_[name] = "1";
     } else if (options_with_value.count(name)) {
-      if (k + 1 >= args.size()) throw Error("option " + arg + " needs a value");
+      if (k + 1 >= args.size() || args[k + 1].rfind("--", 0) == 0) throw Error("option " + arg + " needs a value");
       values_[name] = args[++k];
     } else {
       throw Error("unknown option " + arg + " (see --help)");

@@ -1,5 +1,7 @@
 // `polycube deform IN [--labels nearest|FILE] [--iterations N] [--tolerance DEG]
 //  [--variant fixed|current] [--output OUT] [--report REPORT.json]`
+#include <unistd.h>
+
 #include <cstdio>
 
 #include "cli/arguments.h"
@@ -38,12 +40,17 @@ int deform_command(const std::vector<std::string>& args) {
   const std::vector<int> labels =
       labels_source == "nearest" ? nearest_labels(mesh) : read_labels(labels_source, mesh.faces.count());
 
-  const DeformResult result = deform(mesh, labels, options, [](int iteration, const Vertices&, const Figures& f) {
-    std::fprintf(stderr, "\riteration %4d: max deviation %8.3f deg, %d flipped   ", iteration,
-                 f.normal_deviation_max_deg, f.flipped_faces);
-    return true;
-  });
-  if (result.iterations > 0) std::fprintf(stderr, "\n");
+  // Progress only on a terminal: in logs and pipes it would be noise.
+  const bool progress = isatty(fileno(stderr));
+  IterationCallback show_progress;
+  if (progress)
+    show_progress = [](int iteration, const Vertices&, const Figures& f) {
+      std::fprintf(stderr, "\riteration %4d: max deviation %8.3f deg, %d flipped   ", iteration,
+                   f.normal_deviation_max_deg, f.flipped_faces);
+      return true;
+    };
+  const DeformResult result = deform(mesh, labels, options, show_progress);
+  if (progress && result.iterations > 0) std::fprintf(stderr, "\n");
 
   const std::string report = deform_report_json(mesh, result, options);
   if (arguments.has("output")) write_mesh(arguments.get("output", ""), result.positions, mesh.faces);

@@ -1,0 +1,63 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Label counts for the sidebar, read once per change rather than on every redraw."""
+
+from typing import NamedTuple
+
+import bpy
+from bpy.app.handlers import persistent
+
+from .labels import label_counts, read_labels
+
+
+class LabelSummary(NamedTuple):
+    source: str
+    counts: list        # faces per label, LABEL_NAMES order
+    unlabelled: int
+    error: str          # why the labels cannot be used, or None
+
+
+_summaries = {}
+
+
+def label_summary(obj):
+    key = (obj.as_pointer(), obj.data.as_pointer(), len(obj.data.polygons))
+    summary = _summaries.get(key)
+    if summary is None:
+        try:
+            labels = read_labels(obj)
+            summary = LabelSummary(labels.source, *label_counts(labels.values), None)
+        except ValueError as error:
+            summary = LabelSummary(None, None, None, str(error))
+        _summaries[key] = summary
+    return summary
+
+
+@persistent
+def _forget_on_edit(scene, depsgraph):
+    if any(isinstance(update.id, (bpy.types.Mesh, bpy.types.Object)) for update in depsgraph.updates):
+        _summaries.clear()
+
+
+@persistent
+def _forget_all(*_args):
+    _summaries.clear()
+
+
+_HANDLERS = (
+    (bpy.app.handlers.depsgraph_update_post, _forget_on_edit),
+    (bpy.app.handlers.load_post, _forget_all),
+    (bpy.app.handlers.undo_post, _forget_all),
+    (bpy.app.handlers.redo_post, _forget_all),
+)
+
+
+def register():
+    for handlers, handler in _HANDLERS:
+        handlers.append(handler)
+
+
+def unregister():
+    for handlers, handler in _HANDLERS:
+        if handler in handlers:
+            handlers.remove(handler)
+    _summaries.clear()

@@ -1,0 +1,112 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""One object's deformation: inputs read from Blender, iterations written back.
+
+The same object serves the synchronous run (background mode, redo panel) and the
+modal one (solver in a thread): whoever drives the solver hands each iteration to
+`add_iteration` on Blender's main thread and the result to `finish`.
+"""
+
+from time import perf_counter
+
+import bpy
+
+from . import animation, shape_keys
+from .labels import label_counts, read_labels
+from .mesh_arrays import read_mesh_arrays
+from .polycube_native import LABEL_NAMES
+from .report import store_report
+
+
+class ObjectRun:
+    def __init__(self, obj, settings):
+        """Read the object's mesh and labels; ValueError (one sentence) if it cannot run."""
+        start = perf_counter()
+        self.object_name = obj.name
+        self.settings = settings
+        self.mesh = read_mesh_arrays(obj.data)
+        self.labels = read_labels(obj)
+        self.seconds_read = perf_counter() - start
+        self.seconds_write = 0.0
+        self.kept = []          # iterations written as shape keys, in order
+        self.figures = None     # the latest iteration's figures, for progress
+        self.live_preview = False
+        self._started = False
+
+    def solver_call(self):
+        """Positional and keyword arguments for polycube_native.deform."""
+        args = (self.mesh.vertices, self.mesh.face_indices, self.mesh.face_sizes, self.labels.values)
+        kwargs = dict(iterations=self.settings.iterations, tolerance=self.settings.tolerance,
+                      variant=self.settings.variant)
+        return args, kwargs
+
+    def add_iteration(self, iteration, positions, figures):
+        """positions may be None for iterations the settings do not keep."""
+        self.figures = figures
+        if positions is not None and self.settings.keeps(iteration):
+            block = self._write(iteration, positions)
+            if self.live_preview:
+                shape_keys.show_only(self._object(), block)
+
+    def finish(self, result, seconds_solve):
+        """Write the last iteration if not yet kept, animate, store the report; returns it."""
+        report = dict(result["report"])
+        last = int(report["iterations"])
+        if last > 0 and (not self.kept or self.kept[-1] != last):
+            self._write(last, result["positions"])
+        obj = self._object()
+        if not self._started:
+            # Nothing to write (already a polycube): earlier Polycube keys are stale.
+            self._start(obj)
+        start = perf_counter()
+        keys = shape_keys.polycube_keys(obj)
+        if keys:
+            obj.active_shape_key_index = obj.data.shape_keys.key_blocks.find(keys[-1][1].name)
+            if self.settings.animate:
+                report["animation_frames"] = [self.settings.start_frame,
+                                              animation.animate(obj, self.settings.start_frame)]
+            else:
+                shape_keys.show_only(obj, keys[-1][1])
+        self.seconds_write += perf_counter() - start
+
+        counts, unlabelled = label_counts(self.labels.values)
+        report.update(
+            object=self.object_name,
+            label_source=self.labels.source,
+            label_counts=dict(zip(LABEL_NAMES, counts)),
+            labelled_faces=len(self.labels.values) - unlabelled,
+            kept_iterations=list(self.kept),
+        )
+        report["seconds"] = dict(report["seconds"], read=self.seconds_read,
+                                 deform_call=seconds_solve, write=self.seconds_write)
+        store_report(obj, report)
+        return report
+
+    def discard(self):
+        """Take back the keys this run wrote (the run failed half-way)."""
+        obj = bpy.data.objects.get(self.object_name)
+        if obj is not None and self._started:
+            animation.clear_animation(obj)
+            shape_keys.remove_polycube_keys(obj)
+
+    def _object(self):
+        # Look the object up each time: the run spans many timer events in the UI.
+        obj = bpy.data.objects.get(self.object_name)
+        if obj is None or obj.type != 'MESH' or len(obj.data.vertices) != len(self.mesh.vertices):
+            raise RuntimeError(f"'{self.object_name}' was deleted or changed during the run")
+        return obj
+
+    def _start(self, obj):
+        animation.clear_animation(obj)
+        shape_keys.remove_polycube_keys(obj)
+        self._started = True
+
+    def _write(self, iteration, positions):
+        start = perf_counter()
+        obj = self._object()
+        if not self._started:
+            self._start(obj)
+        block = shape_keys.add_key(
+            obj, shape_keys.key_name(iteration, self.settings.iterations), positions)
+        self.kept.append(iteration)
+        self.seconds_write += perf_counter() - start
+        return block

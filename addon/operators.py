@@ -1,0 +1,206 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Deform to Polycube: the operator.
+
+`execute` runs each object to the end (background mode, scripts, the redo panel);
+`invoke` in the UI runs the solver on a worker thread and writes iterations from a
+timer, so Blender stays responsive and Esc stops early, keeping what is written.
+"""
+
+from time import perf_counter
+
+import bpy
+
+from . import polycube_native, preferences
+from .object_run import ObjectRun
+from .settings import DeformSettings
+from .solver_thread import SolverThread
+
+# Events that reach the rest of Blender while the solver runs: looking around only,
+# so nothing can edit, undo or delete the object that shape keys are being written to.
+_PASS_THROUGH = {
+    'MIDDLEMOUSE', 'WHEELUPMOUSE', 'WHEELDOWNMOUSE', 'WHEELINMOUSE', 'WHEELOUTMOUSE',
+    'MOUSEMOVE', 'INBETWEEN_MOUSEMOVE', 'TRACKPADPAN', 'TRACKPADZOOM', 'MOUSEROTATE',
+    'MOUSESMARTZOOM', 'NDOF_MOTION', 'WINDOW_DEACTIVATE', 'TIMER', 'TIMERREPORT',
+}
+
+
+class OBJECT_OT_polycube_deform(DeformSettings, bpy.types.Operator):
+    """Deform the selected mesh objects into their polycube, a shape key per iteration"""
+    bl_idname = "object.polycube_deform"
+    bl_label = "Deform to Polycube"
+    bl_options = {'REGISTER', 'UNDO'}
+
+    @classmethod
+    def poll(cls, context):
+        if context.mode != 'OBJECT':
+            cls.poll_message_set("Switch to Object Mode first")
+            return False
+        if not context.selected_objects:
+            cls.poll_message_set("Select one or more mesh objects")
+            return False
+        return True
+
+    def draw(self, context):
+        self.draw_settings(self.layout)
+
+    def execute(self, context):
+        self._problems, self._reports = [], []
+        for run in self._prepare(context):
+            args, kwargs = run.solver_call()
+            start = perf_counter()
+            try:
+                result = polycube_native.deform(*args, callback=run.add_iteration, **kwargs)
+                # The callback wrote shape keys on this thread: that time is not solving.
+                self._reports.append(run.finish(result, perf_counter() - start - run.seconds_write))
+            except (ValueError, RuntimeError) as error:
+                self._fail(run, error)
+        return self._conclude(context)
+
+    def invoke(self, context, event):
+        if bpy.app.background:
+            return self.execute(context)
+        self._problems, self._reports = [], []
+        self._pending = self._prepare(context)
+        if not self._pending:
+            return self._conclude(context)
+        self._cancelled = False
+        self._iterations_before = 0
+        wm = context.window_manager
+        wm.progress_begin(0, len(self._pending) * self.iterations)
+        self._timer = wm.event_timer_add(0.05, window=context.window)
+        wm.modal_handler_add(self)
+        self._start_next(context)
+        return {'RUNNING_MODAL'}
+
+    def modal(self, context, event):
+        if event.type == 'ESC' and event.value == 'PRESS':
+            self._cancelled = True
+            self._thread.request_stop()
+            context.workspace.status_text_set("Polycube: stopping after this iteration...")
+            return {'RUNNING_MODAL'}
+        if event.type == 'TIMER' and self._pump(context):
+            return self._end(context)
+        return {'PASS_THROUGH'} if event.type in _PASS_THROUGH else {'RUNNING_MODAL'}
+
+    def cancel(self, context):
+        # Blender is closing the window: let the thread go, keep what is written.
+        self._thread.request_stop()
+        self._cleanup(context)
+
+    def _prepare(self, context):
+        """An ObjectRun for each selected mesh that can be deformed; the rest go to _problems."""
+        settings = self.snapshot()
+        runs, meshes = [], set()
+        for obj in sorted(context.selected_objects, key=lambda o: o.name):
+            if obj.type != 'MESH':
+                self._problems.append(f"Skipped '{obj.name}': it is a {obj.type.lower()}, not a mesh.")
+                continue
+            if obj.data.name in meshes:
+                self._problems.append(
+                    f"Skipped '{obj.name}': it shares its mesh with an object deformed already.")
+                continue
+            try:
+                runs.append(ObjectRun(obj, settings))
+                meshes.add(obj.data.name)
+            except ValueError as error:
+                self._problems.append(_sentence(obj.name, error))
+        return runs
+
+    def _start_next(self, context):
+        self._run = self._pending.pop(0)
+        self._run.live_preview = preferences.live_preview(context)
+        args, kwargs = self._run.solver_call()
+        self._thread = SolverThread(args, kwargs, self._run.settings.keeps)
+        self._thread.start()
+
+    def _pump(self, context):
+        """Hand the solver's messages to the run; True once every object is done."""
+        for message in self._thread.drain():
+            kind = message[0]
+            try:
+                if kind == "iteration":
+                    _, iteration, positions, figures = message
+                    self._run.add_iteration(iteration, positions, figures)
+                    self._show_progress(context, iteration, figures)
+                    continue
+                if kind == "done":
+                    _, result, seconds = message
+                    self._reports.append(self._run.finish(result, seconds))
+                else:
+                    raise message[1]
+            except (ValueError, RuntimeError) as error:
+                self._thread.request_stop()
+                self._thread.join()
+                self._fail(self._run, error)
+            self._iterations_before += self.iterations
+            if not self._pending:
+                return True
+            if self._cancelled:
+                self._problems += [f"Cancelled before '{run.object_name}' was deformed."
+                                   for run in self._pending]
+                return True
+            self._start_next(context)
+            return False
+        return False
+
+    def _show_progress(self, context, iteration, figures):
+        context.window_manager.progress_update(self._iterations_before + iteration)
+        context.workspace.status_text_set(
+            f"Polycube: '{self._run.object_name}' iteration {iteration}/{self.iterations}, "
+            f"max deviation {figures['normal_deviation_max_deg']:.3f}°, "
+            f"{figures['flipped_faces']} flipped faces (Esc to stop)")
+        for area in context.screen.areas:
+            if area.type == 'VIEW_3D':
+                area.tag_redraw()
+
+    def _end(self, context):
+        self._cleanup(context)
+        return self._conclude(context)
+
+    def _cleanup(self, context):
+        wm = context.window_manager
+        wm.event_timer_remove(self._timer)
+        wm.progress_end()
+        context.workspace.status_text_set(None)
+
+    def _fail(self, run, error):
+        run.discard()
+        self._problems.append(_sentence(run.object_name, error))
+
+    def _conclude(self, context):
+        """Report what happened; FINISHED when at least one object was deformed."""
+        if not self._reports:
+            for problem in self._problems:
+                self.report({'ERROR'}, problem)
+            return {'CANCELLED'}
+        for problem in self._problems:
+            self.report({'WARNING'}, problem)
+        ends = [report["animation_frames"][1] for report in self._reports
+                if "animation_frames" in report]
+        if ends:
+            scene = context.scene
+            scene.frame_start, scene.frame_end = self.start_frame, max(ends)
+            scene.frame_set(max(ends))
+        for report in self._reports:
+            self.report({'INFO'}, _summary(report))
+        return {'FINISHED'}
+
+
+def _sentence(name, error):
+    message = str(error).strip().rstrip(".")
+    if message[1:2].islower():
+        message = message[0].lower() + message[1:]
+    return f"'{name}' was not deformed: {message}."
+
+
+def _summary(report):
+    if report["stopped"]:
+        outcome = "stopped"
+    elif report["converged"]:
+        outcome = "converged"
+    else:
+        outcome = "did not converge"
+    return (f"'{report['object']}': {outcome} after {report['iterations']} iterations, "
+            f"max normal deviation {report['normal_deviation_max_deg']:.3f}°, "
+            f"{report['flipped_faces']} flipped faces, "
+            f"{len(report['kept_iterations'])} shape keys.")

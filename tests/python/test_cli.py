@@ -1,0 +1,127 @@
+"""The command-line program: formats, labels files, the report, and failures
+that print one line and leave no partial output behind."""
+import json
+import subprocess
+
+import numpy as np
+import pytest
+
+from conftest import MESHES, SHARED_DATA, read_off
+
+
+def run(program, *args):
+    return subprocess.run([program, *map(str, args)], capture_output=True, text=True, timeout=300)
+
+
+def write_off(path, vertices, indices, sizes):
+    lines = ["OFF", f"{len(vertices)} {len(sizes)} 0"]
+    lines += [" ".join(repr(float(x)) for x in v) for v in vertices]
+    at = 0
+    for k in sizes:
+        lines.append(" ".join(map(str, [k, *indices[at:at + k]])))
+        at += k
+    path.write_text("\n".join(lines) + "\n")
+
+
+@pytest.fixture
+def sphere_off(tmp_path, sphere):
+    path = tmp_path / "sphere.off"
+    write_off(path, *sphere)
+    return path
+
+
+@pytest.mark.parametrize("extension", ["obj", "off", "ply"])
+def test_deform_writes_mesh_and_report(program, native, sphere, sphere_off, tmp_path, extension):
+    out, report_path = tmp_path / f"cube.{extension}", tmp_path / "report.json"
+    result = run(program, "deform", sphere_off, "--iterations", 200, "--output", out, "--report", report_path)
+    assert result.returncode == 0, result.stderr
+    report = json.loads(report_path.read_text())
+    assert report == json.loads(result.stdout)
+    assert report["converged"] and report["flipped_faces"] == 0
+    assert report["normal_deviation_max_deg"] < 0.5
+    # The written mesh is the result: read it back and measure it again.
+    if extension == "off":
+        positions, indices, sizes = read_off(out)
+        vertices, in_indices, in_sizes = sphere
+        assert np.array_equal(indices, in_indices) and np.array_equal(sizes, in_sizes)
+        labels = native.nearest_labels(vertices, indices, sizes)
+        figures = native.figures(vertices, positions, indices, sizes, labels)
+        assert figures["normal_deviation_max_deg"] == pytest.approx(report["normal_deviation_max_deg"])
+    assert out.stat().st_size > 0
+
+
+def test_labels_file_and_options(program, native, sphere, sphere_off, tmp_path):
+    vertices, indices, sizes = sphere
+    labels = native.nearest_labels(vertices, indices, sizes)
+    labels_path = tmp_path / "labels.txt"
+    labels_path.write_text("# nearest axis\n" + "\n".join(map(str, labels)) + "\n")
+    result = run(program, "deform", sphere_off, "--labels", labels_path, "--iterations", 7, "--tolerance", 0,
+                 "--variant", "current")
+    assert result.returncode == 0, result.stderr
+    report = json.loads(result.stdout)
+    assert report["iterations"] == 7 and report["variant"] == "current" and not report["converged"]
+
+
+def test_b0_with_its_labeling(program):
+    surface, labels = SHARED_DATA / "B0" / "surface.obj", SHARED_DATA / "B0" / "labeling.txt"
+    if not surface.exists():
+        pytest.skip("shared/data/B0 is missing")
+    result = run(program, "deform", surface, "--labels", labels, "--iterations", 200)
+    assert result.returncode == 0, result.stderr
+    report = json.loads(result.stdout)
+    assert report["converged"] and report["flipped_faces"] == 0 and report["triangles"] == 19964
+
+
+@pytest.mark.parametrize("make_args, words", [
+    (lambda d, m: ["deform"], "no input mesh"),
+    (lambda d, m: ["deform", d / "missing.off"], "missing.off"),
+    (lambda d, m: ["deform", m, "--iterations"], "needs a value"),
+    (lambda d, m: ["deform", m, "--iterations", "ten"], "--iterations"),
+    (lambda d, m: ["deform", m, "--tolerance", "-1"], "--tolerance"),
+    (lambda d, m: ["deform", m, "--variant", "fast"], "unknown variant"),
+    (lambda d, m: ["deform", m, "--colour", "red"], "unknown option --colour"),
+    (lambda d, m: ["deform", m, m], "more than one input"),
+    (lambda d, m: ["deform", m, "--labels", d / "nolabels.txt"], "nolabels.txt"),
+    (lambda d, m: ["deform", d / "mesh.stl"], "mesh.stl"),
+    (lambda d, m: ["deform", d / "bad.off"], "bad.off"),
+    (lambda d, m: ["deform", d / "nan.off"], "nan.off"),
+    (lambda d, m: ["deform", m, "--labels", d / "wrong_count.txt"], "wrong_count.txt"),
+    (lambda d, m: ["deform", m, "--labels", d / "junk.txt"], "junk.txt"),
+    (lambda d, m: ["frobnicate", m], "unknown command"),
+])
+def test_bad_files_and_arguments_fail_cleanly(program, sphere_off, tmp_path, make_args, words):
+    (tmp_path / "mesh.stl").write_text("solid x\nendsolid x\n")
+    (tmp_path / "bad.off").write_text("OFF\n3 1 0\n0 0 0\n1 0 0\n")
+    (tmp_path / "nan.off").write_text("OFF\n3 1 0\n0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n")
+    (tmp_path / "wrong_count.txt").write_text("0\n1\n")
+    (tmp_path / "junk.txt").write_text("0\n" * 100 + "banana\n")
+    out = tmp_path / "out.obj"
+    result = run(program, *make_args(tmp_path, sphere_off), "--output", out)
+    assert result.returncode != 0
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1, result.stderr
+    assert words in lines[0]
+    assert not out.exists() and not (tmp_path / "out.obj.tmp").exists()
+
+
+def test_unwritable_output_leaves_nothing(program, sphere_off, tmp_path):
+    result = run(program, "deform", sphere_off, "--iterations", 2, "--output", tmp_path / "no" / "dir" / "x.obj")
+    assert result.returncode != 0 and "x.obj" in result.stderr
+    assert not (tmp_path / "no").exists()
+
+
+def test_help(program):
+    result = run(program, "deform", "--help")
+    assert result.returncode == 0 and "--variant" in result.stdout
+    assert run(program).returncode == 2
+
+
+def test_real_model_both_variants(program, tmp_path):
+    fandisk = MESHES / "fandisk.off"
+    if not fandisk.exists():
+        pytest.skip("run `make data`")
+    for variant in ("fixed", "current"):
+        result = run(program, "deform", fandisk, "--variant", variant, "--iterations", 20, "--tolerance", 0)
+        report = json.loads(result.stdout)
+        assert result.returncode == 0 and report["iterations"] == 20
+        assert all(np.isfinite(report[k]) for k in ("edge_error", "area_error", "normal_deviation_max_deg"))

@@ -1,0 +1,149 @@
+"""The Python module: numpy in and out, keyword options, the callback, errors."""
+import threading
+import time
+
+import numpy as np
+import pytest
+
+from conftest import uv_sphere
+
+REPORT_KEYS = {
+    "vertices", "faces", "triangles", "iterations", "converged", "normal_deviation_max_deg",
+    "normal_deviation_mean_deg", "edge_error", "area_error", "flipped_faces", "collapsed_faces",
+    "variant", "seconds",
+}
+
+
+def test_sphere_becomes_a_cube(native, sphere):
+    vertices, indices, sizes = sphere
+    labels = native.nearest_labels(vertices, indices, sizes)
+    result = native.deform(vertices, indices, sizes, labels, iterations=200, tolerance=0.5)
+    report = result["report"]
+    assert REPORT_KEYS <= report.keys()
+    assert set(report["seconds"]) >= {"total", "assemble", "factorize", "rotations", "solve"}
+    assert report["converged"] and report["normal_deviation_max_deg"] < 0.5
+    assert report["flipped_faces"] == 0
+    assert report["vertices"] == len(vertices) and report["faces"] == len(sizes)
+    positions = result["positions"]
+    assert positions.shape == vertices.shape and positions.dtype == np.float64
+    # Six flat charts: the corners of all faces labelled +-axis share that coordinate.
+    extent = np.ptp(positions, axis=0)
+    corners_label = np.repeat(labels, sizes)
+    for label in range(6):
+        coordinate = positions[indices[corners_label == label], label // 2]
+        assert np.ptp(coordinate) < 1e-2 * extent[label // 2], native.LABEL_NAMES[label]
+    # The module's figures agree with the report.
+    figures = native.figures(vertices, positions, indices, sizes, labels)
+    assert figures["normal_deviation_max_deg"] == pytest.approx(report["normal_deviation_max_deg"])
+    assert figures["edge_error"] == pytest.approx(report["edge_error"])
+
+
+def test_input_arrays_are_not_changed_and_any_dtype_is_accepted(native, sphere):
+    vertices, indices, sizes = sphere
+    before = vertices.copy()
+    result = native.deform(vertices.astype(np.float32), indices.astype(np.int64), sizes.tolist(),
+                           np.full(len(sizes), -1, dtype=np.int8), iterations=3)
+    assert np.array_equal(vertices, before)
+    assert result["report"]["unlabelled_faces"] == len(sizes)
+    assert np.array_equal(result["labels"], native.nearest_labels(vertices, indices, sizes))
+
+
+def test_variants_and_iteration_limit(native, sphere):
+    vertices, indices, sizes = sphere
+    labels = native.nearest_labels(vertices, indices, sizes)
+    for variant in ("fixed", "current"):
+        report = native.deform(vertices, indices, sizes, labels, iterations=4, tolerance=0,
+                               variant=variant)["report"]
+        assert report["variant"] == variant and report["iterations"] == 4
+        assert not report["converged"]
+
+
+def test_callback_sees_each_iteration_and_can_stop(native, sphere):
+    vertices, indices, sizes = sphere
+    labels = native.nearest_labels(vertices, indices, sizes)
+    seen = []
+
+    def callback(iteration, positions, figures):
+        seen.append((iteration, positions.copy(), figures))
+        return iteration < 4
+
+    result = native.deform(vertices, indices, sizes, labels, iterations=50, tolerance=0, callback=callback)
+    assert [s[0] for s in seen] == [1, 2, 3, 4]
+    assert result["report"]["stopped"] and result["report"]["iterations"] == 4
+    assert np.array_equal(seen[-1][1], result["positions"])
+    for iteration, positions, figures in seen:
+        assert figures["iteration"] == iteration
+        expected = native.figures(vertices, positions, indices, sizes, labels)
+        assert figures["normal_deviation_max_deg"] == pytest.approx(expected["normal_deviation_max_deg"])
+        assert figures["flipped_faces"] == expected["flipped_faces"]
+
+
+def test_callback_exception_propagates(native, sphere):
+    vertices, indices, sizes = sphere
+
+    def callback(iteration, positions, figures):
+        raise KeyError("from the callback")
+
+    with pytest.raises(KeyError, match="from the callback"):
+        native.deform(vertices, indices, sizes, np.zeros(len(sizes), int), iterations=5, callback=callback)
+
+
+def test_gil_is_released_while_solving(native):
+    vertices, indices, sizes = uv_sphere(256, 128)
+    labels = native.nearest_labels(vertices, indices, sizes)
+    done = threading.Event()
+
+    def solve():
+        native.deform(vertices, indices, sizes, labels, iterations=15, tolerance=0)
+        done.set()
+
+    worker = threading.Thread(target=solve)
+    start = time.perf_counter()
+    worker.start()
+    ticks = 0
+    while not done.is_set():
+        ticks += 1
+        time.sleep(0.001)
+    worker.join()
+    elapsed = time.perf_counter() - start
+    # Holding the GIL would starve this loop to a handful of ticks for the whole solve.
+    assert elapsed > 0.1, "the solve was too short to tell"
+    assert ticks > elapsed / 0.001 * 0.2
+
+
+@pytest.mark.parametrize("mutate, words", [
+    (lambda v, i, s, l: (v[:, :2], i, s, l), r"\(n, 3\)"),
+    (lambda v, i, s, l: (np.zeros((0, 3)), i[:0], s[:0], l[:0]), "empty"),
+    (lambda v, i, s, l: (v, i[:0], s[:0], l[:0]), "no faces"),
+    (lambda v, i, s, l: (np.where(np.arange(len(v))[:, None] == 3, np.nan, v), i, s, l), "non-finite"),
+    (lambda v, i, s, l: (v, np.where(np.arange(len(i)) == 7, 10**6, i), s, l), "vertex index 1000000"),
+    (lambda v, i, s, l: (v, i, s, np.where(np.arange(len(l)) == 2, 6, l)), r"outside -1\.\.5"),
+    (lambda v, i, s, l: (v, i, s, l[:-1]), "labels for"),
+    (lambda v, i, s, l: (v, i[:-1], s, l), "face_sizes add up"),
+    (lambda v, i, s, l: (v, i, np.where(np.arange(len(s)) == 0, 2, s), l), "at least 3"),
+])
+def test_bad_input_raises_value_error(native, sphere, mutate, words):
+    vertices, indices, sizes = sphere
+    labels = native.nearest_labels(vertices, indices, sizes)
+    with pytest.raises(ValueError, match=words):
+        native.deform(*mutate(vertices, indices, sizes, labels), iterations=2)
+
+
+def test_bad_options_raise_value_error(native, sphere):
+    vertices, indices, sizes = sphere
+    labels = native.nearest_labels(vertices, indices, sizes)
+    with pytest.raises(ValueError, match="variant"):
+        native.deform(vertices, indices, sizes, labels, variant="fast")
+    with pytest.raises(ValueError, match="tolerance"):
+        native.deform(vertices, indices, sizes, labels, tolerance=-1)
+    with pytest.raises(ValueError, match="iteration"):
+        native.deform(vertices, indices, sizes, labels, iterations=-3)
+
+
+def test_fandisk_both_variants_finite(native, real_mesh):
+    vertices, indices, sizes = real_mesh("fandisk")
+    labels = native.nearest_labels(vertices, indices, sizes)
+    for variant in ("fixed", "current"):
+        result = native.deform(vertices, indices, sizes, labels, iterations=30, variant=variant)
+        assert np.isfinite(result["positions"]).all()
+        assert result["report"]["triangles"] == 12946
