@@ -20,7 +20,11 @@ _summaries = {}
 
 
 def label_summary(obj):
-    key = (obj.as_pointer(), obj.data.as_pointer(), len(obj.data.polygons))
+    # Renaming a face map or an attribute triggers no depsgraph update: key on names too.
+    mesh = obj.data
+    key = (obj.as_pointer(), mesh.as_pointer(), len(mesh.polygons),
+           tuple(face_map.name for face_map in getattr(obj, "face_maps", ())),
+           tuple(attribute.name for attribute in mesh.attributes))
     summary = _summaries.get(key)
     if summary is None:
         try:

@@ -38,7 +38,9 @@ def read_mesh_arrays(mesh):
     vertices = read_coordinates(mesh.vertices, vertex_count)
     bad = ~np.isfinite(vertices).all(axis=1)
     if bad.any():
-        raise ValueError(f"{int(bad.sum())} of its vertices have NaN or infinite coordinates")
+        count = int(bad.sum())
+        raise ValueError(f"{'a vertex has' if count == 1 else f'{count} vertices have'} "
+                         f"NaN or infinite coordinates")
 
     face_sizes = np.empty(face_count, dtype=np.int32)
     mesh.polygons.foreach_get("loop_total", face_sizes)
@@ -72,7 +74,7 @@ def new_mesh(name, vertices, face_indices, face_sizes):
     mesh.loops.foreach_set("vertex_index", np.asarray(face_indices, dtype=np.int32))
     mesh.polygons.add(len(face_sizes))
     mesh.polygons.foreach_set("loop_start", (np.cumsum(face_sizes) - face_sizes).astype(np.int32))
-    if not mesh.polygons.bl_rna.properties["loop_total"].is_readonly:
+    if not bpy.types.MeshPolygon.bl_rna.properties["loop_total"].is_readonly:
         # Blender < 4.0 stores sizes; later versions derive them from loop_start.
         mesh.polygons.foreach_set("loop_total", face_sizes)
     mesh.update(calc_edges=True)

@@ -4,6 +4,8 @@
 import numpy as np
 
 REPORT_PROPERTY = "polycube_report"
+# Blender 3.x ID properties have no booleans: these come back from 0/1.
+_BOOLEAN_KEYS = ("converged", "stopped")
 
 
 def store_report(obj, report):
@@ -12,7 +14,13 @@ def store_report(obj, report):
 
 def load_report(obj):
     stored = obj.get(REPORT_PROPERTY)
-    return stored.to_dict() if hasattr(stored, "to_dict") else None
+    if not hasattr(stored, "to_dict"):
+        return None
+    report = stored.to_dict()
+    for key in _BOOLEAN_KEYS:
+        if key in report:
+            report[key] = bool(report[key])
+    return report
 
 
 def _plain(value):

@@ -9,5 +9,11 @@ namespace polycube {
 
 extern const char* const kDeformUsage;
 int deform_command(const std::vector<std::string>& args);
+extern const char* const kLabelUsage;
+int label_command(const std::vector<std::string>& args);
+extern const char* const kValidateUsage;
+int validate_command(const std::vector<std::string>& args);
+extern const char* const kRefineUsage;
+int refine_command(const std::vector<std::string>& args);
 
 }  // namespace polycube

@@ -1,4 +1,4 @@
-// `polycube deform IN [--labels nearest|FILE] [--iterations N] [--tolerance DEG]
+// `polycube deform IN [--labels nearest|auto|FILE] [--flip-labels] [--iterations N] [--tolerance DEG]
 //  [--variant fixed|current] [--output OUT] [--report REPORT.json]`
 #include <unistd.h>
 
@@ -6,6 +6,8 @@
 
 #include "cli/arguments.h"
 #include "cli/commands.h"
+#include "cli/label_source.h"
+#include "core/auto_labels.h"
 #include "core/deform.h"
 #include "core/nearest_labels.h"
 #include "io/deform_report.h"
@@ -16,11 +18,13 @@
 namespace polycube {
 
 const char* const kDeformUsage =
-    "polycube deform IN.(off|obj|ply) [--labels nearest|FILE] [--iterations N] [--tolerance DEG]\n"
+    "polycube deform IN.(off|obj|ply) [--labels nearest|auto|FILE] [--flip-labels] [--iterations N] [--tolerance DEG]\n"
     "                [--variant fixed|current] [--output OUT.(obj|off|ply)] [--report REPORT.json]\n"
     "  Deforms the mesh into its polycube and prints the quality figures.\n"
     "  --labels      nearest (default): every face takes the axis nearest its normal;\n"
+    "                auto: the automatic labeller (see `polycube label`; --compactness W, default 1);\n"
     "                FILE: one label per face, 0..5 = +X,-X,+Y,-Y,+Z,-Z, -1 = nearest\n"
+    "  --flip-labels every label turned to its opposite: labels made for the other winding\n"
     "  --iterations  iteration limit (default 100)\n"
     "  --tolerance   stop when every face is within DEG degrees of its axis (default 0.5; 0 = never)\n"
     "  --variant     fixed (default): Laplacian of the input, factorised once;\n"
@@ -29,7 +33,8 @@ const char* const kDeformUsage =
     "  --report      the figures and timings as JSON\n";
 
 int deform_command(const std::vector<std::string>& args) {
-  const Arguments arguments(args, {"labels", "iterations", "tolerance", "variant", "output", "report"});
+  const Arguments arguments(args, {"labels", "iterations", "tolerance", "variant", "output", "report", "compactness"},
+                            {"flip-labels"});
   DeformOptions options;
   options.iterations = arguments.get_int("iterations", options.iterations, 0);
   options.tolerance_deg = arguments.get_double("tolerance", options.tolerance_deg, 0.0);
@@ -37,8 +42,10 @@ int deform_command(const std::vector<std::string>& args) {
 
   const PolygonMesh mesh = read_mesh(arguments.input());
   const std::string labels_source = arguments.get("labels", "nearest");
-  const std::vector<int> labels =
-      labels_source == "nearest" ? nearest_labels(mesh) : read_labels(labels_source, mesh.faces.count());
+  const bool flip = arguments.has("flip-labels");
+  const std::vector<int> labels = labels_from_source(
+      labels_source, mesh, arguments.get_double("compactness", AutoLabelOptions().compactness, 0.0), flip);
+  warn_about_orientation(mesh, labels, flip);
 
   // Progress only on a terminal: in logs and pipes it would be noise.
   const bool progress = isatty(fileno(stderr));

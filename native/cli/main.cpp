@@ -10,8 +10,23 @@
 
 namespace {
 
+struct Command {
+  const char* name;
+  const char* const& usage;
+  int (*run)(const std::vector<std::string>&);
+};
+
+const Command kCommands[] = {
+    {"deform", polycube::kDeformUsage, polycube::deform_command},
+    {"label", polycube::kLabelUsage, polycube::label_command},
+    {"validate", polycube::kValidateUsage, polycube::validate_command},
+    {"refine", polycube::kRefineUsage, polycube::refine_command},
+};
+
 void print_usage(std::FILE* out) {
-  std::fprintf(out, "usage: %s\nRun `polycube COMMAND --help` for one command.\n", polycube::kDeformUsage);
+  std::fprintf(out, "usage:\n");
+  for (const Command& command : kCommands) std::fprintf(out, "%s\n", command.usage);
+  std::fprintf(out, "Run `polycube COMMAND --help` for one command.\n");
 }
 
 }  // namespace
@@ -21,24 +36,29 @@ int main(int argc, char** argv) {
     print_usage(argc < 2 ? stderr : stdout);
     return argc < 2 ? 2 : 0;
   }
-  const std::string command = argv[1];
+  const std::string name = argv[1];
   const std::vector<std::string> args(argv + 2, argv + argc);
-  const bool help = args.size() == 1 && (args[0] == "--help" || args[0] == "-h");
-  try {
-    if (command == "deform") {
-      if (help) return std::printf("usage: %s", polycube::kDeformUsage), 0;
-      return polycube::deform_command(args);
-    }
-    std::fprintf(stderr, "polycube: unknown command '%s' (commands: deform)\n", command.c_str());
+  const Command* command = nullptr;
+  for (const Command& c : kCommands)
+    if (name == c.name) command = &c;
+  if (!command) {
+    std::fprintf(stderr, "polycube: unknown command '%s' (run `polycube --help`)\n", name.c_str());
     return 2;
+  }
+  if (args.size() == 1 && (args[0] == "--help" || args[0] == "-h")) {
+    std::printf("usage: %s", command->usage);
+    return 0;
+  }
+  try {
+    return command->run(args);
   } catch (const polycube::Error& e) {
-    std::fprintf(stderr, "polycube %s: error: %s\n", command.c_str(), e.what());
+    std::fprintf(stderr, "polycube %s: error: %s\n", name.c_str(), e.what());
     return 1;
   } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "polycube %s: error: out of memory\n", command.c_str());
+    std::fprintf(stderr, "polycube %s: error: out of memory\n", name.c_str());
     return 1;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "polycube %s: internal error: %s\n", command.c_str(), e.what());
+    std::fprintf(stderr, "polycube %s: internal error: %s\n", name.c_str(), e.what());
     return 3;
   }
 }

@@ -15,18 +15,23 @@ namespace polycube {
 // Which Laplacian the Poisson solve uses. Every fixed point is an exact polycube
 // whatever the weights, so both reach the same shapes; they differ in cost and
 // robustness.
+//
+// `robust` (the default) is ours, not the paper's; see robust_step.h for why
+// and what it does. `fixed` and `current` are the plain method, kept for
+// comparison: their fixed points are exactly the polycubes of the labels.
 enum class Variant {
   kFixed,    // built from the input once, factorised once: one back-substitution per iteration
   kCurrent,  // rebuilt from the current mesh every iteration, as in the paper
+  kRobust,   // fold-free: input-shape fitting, then the paper's step under a step control
 };
 
-Variant parse_variant(const std::string& name);  // "fixed" | "current", else Error
+Variant parse_variant(const std::string& name);  // "robust" | "fixed" | "current", else Error
 const char* variant_name(Variant variant);
 
 struct DeformOptions {
   int iterations = 100;
   double tolerance_deg = 0.5;  // 0 runs every iteration: nothing is below it
-  Variant variant = Variant::kFixed;
+  Variant variant = Variant::kRobust;
 };
 
 struct PhaseSeconds {
@@ -42,6 +47,11 @@ struct DeformResult {
   bool stopped = false;     // the callback asked to stop
   int unlabelled_faces = 0;
   int triangles = 0;
+  // Polygon faces (ids into the input's faces, ascending) that end above the
+  // tolerance, and those of them that are flipped (a visible fold). A polygon
+  // is listed when any of its triangles is; collapsed triangles are not.
+  std::vector<int> unconverged_faces;
+  std::vector<int> flipped_faces;
   PhaseSeconds seconds;
 };
 

@@ -95,8 +95,10 @@ void write(const Node& n, int indent, int depth, std::string& out) {
                           [](const Node& c) { return c.kind == Node::kObject || c.kind == Node::kArray; });
     out += object ? '{' : '[';
     for (size_t i = 0; i < n.children.size(); ++i) {
-      if (!flat) out.append(i ? ",\n" : "\n").append((depth + 1) * indent, ' ');
-      else if (i) out += comma;
+      if (!flat)
+        out.append(i ? ",\n" : "\n").append((depth + 1) * indent, ' ');
+      else if (i)
+        out += comma;
       if (object) out.append(quote(n.keys[i])).append(indent > 0 ? ": " : ":");
       write(n.children[i], indent, depth + 1, out);
     }
@@ -115,7 +117,8 @@ JsonWriter& JsonWriter::operator=(JsonWriter&&) noexcept = default;
 JsonWriter& JsonWriter::insert(const std::string_view* key, Node node) {
   Node& parent = *open_.back();
   if ((parent.kind == Node::kObject) != (key != nullptr))
-    throw std::logic_error(key ? "JsonWriter: a key inside an array" : "JsonWriter: a value without a key in an object");
+    throw std::logic_error(key ? "JsonWriter: a key inside an array"
+                               : "JsonWriter: a value without a key in an object");
   if (key) parent.keys.emplace_back(*key);
   parent.children.push_back(std::move(node));
   if (parent.children.back().kind == Node::kObject || parent.children.back().kind == Node::kArray)
@@ -127,8 +130,12 @@ JsonWriter& JsonWriter::add_number(const std::string_view* key, std::string text
   return insert(key, value(std::move(text)));
 }
 
-JsonWriter& JsonWriter::add(std::string_view key, std::string_view v) { return insert(&key, value(quote(v))); }
-JsonWriter& JsonWriter::add(std::string_view key, bool v) { return insert(&key, value(v ? "true" : "false")); }
+JsonWriter& JsonWriter::add(std::string_view key, std::string_view v) {
+  return insert(&key, value(quote(v)));
+}
+JsonWriter& JsonWriter::add(std::string_view key, bool v) {
+  return insert(&key, value(v ? "true" : "false"));
+}
 JsonWriter& JsonWriter::add(std::string_view key, double v) { return insert(&key, number(v)); }
 JsonWriter& JsonWriter::add(std::string_view key, const std::vector<int>& v) {
   Node n = container(Node::kInts);

@@ -15,9 +15,7 @@ namespace {
 
 constexpr const char* kConvention = "0..5 = +X,-X,+Y,-Y,+Z,-Z, -1 = unlabelled";
 
-bool is_space(char c) {
-  return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
-}
+bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f'; }
 
 }  // namespace
 
@@ -44,10 +42,14 @@ std::vector<int> read_labels(const std::string& path, int face_count) {
       while (p < end && !is_space(*p) && *p != '#') ++p;
       std::string_view token(start, p - start);
       long long value = 0;
-      const char* digits = token.size() > 1 && token[0] == '+' ? start + 1 : start;
+      const char* digits = token.size() > 1 && token[0] == '+' && token[1] != '-' ? start + 1 : start;
       auto r = std::from_chars(digits, p, value);
-      if (r.ptr != p || r.ec != std::errc())
-        fail("expected an integer label, got '" + std::string(token.substr(0, 40)) + "'");
+      if (r.ptr != p || r.ec != std::errc()) {
+        std::string shown(token.substr(0, 40));
+        for (char& c : shown)
+          if (static_cast<unsigned char>(c) < 0x20) c = '?';  // keep binary junk off the terminal
+        fail("expected an integer label, got '" + shown + "'");
+      }
       if (value < -1 || value > 5)
         fail("label " + std::string(token) + " is outside -1..5 (" + kConvention + ")");
       labels.push_back(static_cast<int>(value));

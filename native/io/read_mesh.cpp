@@ -25,12 +25,9 @@
 namespace polycube {
 namespace {
 
-[[noreturn]] void fail(const std::string& path, const std::string& what) {
-  throw Error(path + ": " + what);
-}
+[[noreturn]] void fail(const std::string& path, const std::string& what) { throw Error(path + ": " + what); }
 
-[[noreturn]] void fail_at(const std::string& path, long line,
-                          const std::string& what) {
+[[noreturn]] void fail_at(const std::string& path, long line, const std::string& what) {
   throw Error(path + " line " + std::to_string(line) + ": " + what);
 }
 
@@ -43,9 +40,7 @@ std::string quoted(std::string_view token) {
   return "'" + s + (token.size() > 40 ? "...'" : "'");
 }
 
-bool is_space(char c) {
-  return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
-}
+bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
 
 // Whitespace-separated tokens of one line.
 class Tokens {
@@ -62,7 +57,7 @@ class Tokens {
     return !token.empty();
   }
 
-  bool empty() {
+  bool empty() const {
     std::string_view t;
     Tokens copy = *this;
     return !copy.next(t);
@@ -107,8 +102,8 @@ class Lines {
   bool comments_;
 };
 
-// from_chars rejects a leading '+', which C's strtod (and so many writers'
-// readers) accept.
+// from_chars rejects a leading '+', which strtod, and so other tools,
+// accept.
 const char* skip_plus(const char* b, const char* e) {
   return (e - b > 1 && b[0] == '+' && b[1] != '-') ? b + 1 : b;
 }
@@ -147,8 +142,7 @@ std::string lower(std::string s) {
 // Text formats: refuse binary data early, and drop a UTF-8 byte order mark
 // some Windows editors add.
 std::string_view text_of(const std::string& path, const std::string& data) {
-  if (std::memchr(data.data(), '\0', data.size()))
-    fail(path, "is not a text file (it contains NUL bytes)");
+  if (std::memchr(data.data(), '\0', data.size())) fail(path, "is not a text file (it contains NUL bytes)");
   std::string_view text(data);
   if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
   return text;
@@ -156,14 +150,15 @@ std::string_view text_of(const std::string& path, const std::string& data) {
 
 // Counts from a header must fit an int (our index type) and the bytes left:
 // min_bytes is the least each entry can take.
-void check_count(const std::string& path, long line, long long count,
-                 const std::string& what, double min_bytes, double& bytes_left) {
+void check_count(const std::string& path, long line, long long count, const std::string& what,
+                 double min_bytes, double& bytes_left) {
   if (count < 0 || count > INT_MAX)
-    fail_at(path, line, "the header announces " + std::to_string(count) + " " +
-                            what + ", which is not a usable count");
+    fail_at(path, line,
+            "the header announces " + std::to_string(count) + " " + what + ", which is not a usable count");
   if (count * min_bytes > bytes_left)
-    fail_at(path, line, "the header announces " + std::to_string(count) + " " + what +
-                            ", more than the rest of the file can hold (truncated file?)");
+    fail_at(path, line,
+            "the header announces " + std::to_string(count) + " " + what +
+                ", more than the rest of the file can hold (truncated file?)");
   bytes_left -= count * min_bytes;
 }
 
@@ -190,8 +185,7 @@ PolygonMesh read_off(const std::string& path, std::string_view text) {
   drop("N");
   bool four = drop("4");
   bool n_dim = drop("n");
-  if (kind != "OFF")
-    fail_at(path, lines.number(), "expected an OFF header, got " + quoted(word));
+  if (kind != "OFF") fail_at(path, lines.number(), "expected an OFF header, got " + quoted(word));
   if (four) fail_at(path, lines.number(), "4D OFF files are not supported, only 3D ones");
 
   // The counts may follow OFF on its line or come on the next ones.
@@ -203,7 +197,8 @@ PolygonMesh read_off(const std::string& path, std::string_view text) {
     }
     if (t == "BINARY") fail_at(path, lines.number(), "binary OFF files are not supported");
     long long v;
-    if (!to_int(t, v)) fail_at(path, lines.number(), std::string("expected the ") + what + ", got " + quoted(t));
+    if (!to_int(t, v))
+      fail_at(path, lines.number(), std::string("expected the ") + what + ", got " + quoted(t));
     return v;
   };
   if (n_dim && header_int("dimension") != 3)
@@ -222,16 +217,17 @@ PolygonMesh read_off(const std::string& path, std::string_view text) {
   std::string_view t;
   for (long long i = 0; i < nv; ++i) {
     if (!lines.next(line))
-      fail_at(path, lines.number(), "file ends after " + std::to_string(i) + " of the " +
-                                        std::to_string(nv) + " vertices the header announces");
+      fail_at(path, lines.number(),
+              "file ends after " + std::to_string(i) + " of the " + std::to_string(nv) +
+                  " vertices the header announces");
     Tokens vt(line);
     for (int c = 0; c < 3; ++c) {
-      if (!vt.next(t))
-        fail_at(path, lines.number(), "expected 3 coordinates, got " + std::to_string(c));
+      if (!vt.next(t)) fail_at(path, lines.number(), "expected 3 coordinates, got " + std::to_string(c));
       double& x = mesh.vertices(i, c);
       if (!to_double(t, x)) fail_at(path, lines.number(), "expected a number, got " + quoted(t));
       if (!std::isfinite(x))
-        fail_at(path, lines.number(), "vertex " + std::to_string(i) + " has a non-finite coordinate " + quoted(t));
+        fail_at(path, lines.number(),
+                "vertex " + std::to_string(i) + " has a non-finite coordinate " + quoted(t));
     }
   }
 
@@ -240,33 +236,36 @@ PolygonMesh read_off(const std::string& path, std::string_view text) {
   faces.indices.reserve(std::min<size_t>(3 * nf, lines.remaining() / 2));
   for (long long f = 0; f < nf; ++f) {
     if (!lines.next(line))
-      fail_at(path, lines.number(), "file ends after " + std::to_string(f) + " of the " +
-                                        std::to_string(nf) + " faces the header announces");
+      fail_at(path, lines.number(),
+              "file ends after " + std::to_string(f) + " of the " + std::to_string(nf) +
+                  " faces the header announces");
     Tokens ft(line);
     long long k = 0;
     ft.next(t);
     if (!to_int(t, k)) fail_at(path, lines.number(), "expected a face's vertex count, got " + quoted(t));
     if (k < 3)
-      fail_at(path, lines.number(), "face " + std::to_string(f) + " has " + std::to_string(k) +
-                                        " vertices, a face needs at least 3");
+      fail_at(
+          path, lines.number(),
+          "face " + std::to_string(f) + " has " + std::to_string(k) + " vertices, a face needs at least 3");
     for (long long j = 0; j < k; ++j) {
       long long v;
       if (!ft.next(t))
-        fail_at(path, lines.number(), "face " + std::to_string(f) + " should list " + std::to_string(k) +
-                                          " vertex indices, got " + std::to_string(j));
+        fail_at(path, lines.number(),
+                "face " + std::to_string(f) + " should list " + std::to_string(k) + " vertex indices, got " +
+                    std::to_string(j));
       if (!to_int(t, v)) fail_at(path, lines.number(), "expected a vertex index, got " + quoted(t));
       if (v < 0 || v >= nv)
-        fail_at(path, lines.number(), "face " + std::to_string(f) + " uses vertex " + std::to_string(v) +
-                                          ", but there are only " + std::to_string(nv) +
-                                          " vertices (numbered from 0)");
+        fail_at(path, lines.number(),
+                "face " + std::to_string(f) + " uses vertex " + std::to_string(v) + ", but there are only " +
+                    std::to_string(nv) + " vertices (numbered from 0)");
       faces.indices.push_back(static_cast<int>(v));
     }
     // Anything after the indices is a per-face colour: ignored.
     faces.offsets.push_back(static_cast<int>(faces.indices.size()));
   }
   if (lines.next(line))
-    fail_at(path, lines.number(), "data continues after the " + std::to_string(nf) +
-                                      " faces the header announces");
+    fail_at(path, lines.number(),
+            "data continues after the " + std::to_string(nf) + " faces the header announces");
   return mesh;
 }
 
@@ -292,8 +291,8 @@ PolygonMesh read_obj(const std::string& path, std::string_view text) {
           fail_at(path, lines.number(), "expected 3 coordinates, got " + std::to_string(c));
         if (!to_double(t, x)) fail_at(path, lines.number(), "expected a number, got " + quoted(t));
         if (!std::isfinite(x))
-          fail_at(path, lines.number(), "vertex " + std::to_string(xyz.size() / 3) +
-                                            " has a non-finite coordinate " + quoted(t));
+          fail_at(path, lines.number(),
+                  "vertex " + std::to_string(xyz.size() / 3) + " has a non-finite coordinate " + quoted(t));
         xyz.push_back(x);
       }
     } else if (word == "f") {
@@ -303,15 +302,17 @@ PolygonMesh read_obj(const std::string& path, std::string_view text) {
         // i, i/t, i//n or i/t/n: only the position index matters here.
         long long v;
         if (!to_int(t.substr(0, t.find('/')), v))
-          fail_at(path, lines.number(), "expected a vertex index like 7, 7/2, 7//3 or 7/2/3, got " + quoted(t));
+          fail_at(path, lines.number(),
+                  "expected a vertex index like 7, 7/2, 7//3 or 7/2/3, got " + quoted(t));
         if (v == 0) fail_at(path, lines.number(), "vertex index 0 is invalid, OBJ indices start at 1");
         if (v < 0) {
           v += count;  // -1 is the latest vertex
           if (v < 0)
-            fail_at(path, lines.number(), "relative index " + std::string(t) + " reaches before the first vertex (" +
-                                              std::to_string(count) + " so far)");
+            fail_at(path, lines.number(),
+                    "relative index " + quoted(t) + " reaches before the first vertex (" +
+                        std::to_string(count) + " so far)");
         } else {
-          if (v > INT_MAX) fail_at(path, lines.number(), "vertex index " + std::string(t) + " is too large");
+          if (v > INT_MAX) fail_at(path, lines.number(), "vertex index " + quoted(t) + " is too large");
           if (--v > largest) {
             largest = v;
             largest_line = lines.number();
@@ -329,8 +330,9 @@ PolygonMesh read_obj(const std::string& path, std::string_view text) {
   }
   long long nv = static_cast<long long>(xyz.size() / 3);
   if (largest >= nv)
-    fail_at(path, largest_line, "face uses vertex " + std::to_string(largest + 1) + ", but the file has only " +
-                                    std::to_string(nv) + " vertices");
+    fail_at(path, largest_line,
+            "face uses vertex " + std::to_string(largest + 1) + ", but the file has only " +
+                std::to_string(nv) + " vertices");
   PolygonMesh mesh;
   mesh.vertices = Eigen::Map<const Vertices>(xyz.data(), nv, 3);
   mesh.faces = std::move(faces);
@@ -359,10 +361,18 @@ bool ply_type(std::string_view name, PlyType& t) {
 
 size_t ply_size(PlyType t) {
   switch (t) {
-    case PlyType::i8: case PlyType::u8: return 1;
-    case PlyType::i16: case PlyType::u16: return 2;
-    case PlyType::i32: case PlyType::u32: case PlyType::f32: return 4;
-    case PlyType::f64: return 8;
+    case PlyType::i8:
+    case PlyType::u8:
+      return 1;
+    case PlyType::i16:
+    case PlyType::u16:
+      return 2;
+    case PlyType::i32:
+    case PlyType::u32:
+    case PlyType::f32:
+      return 4;
+    case PlyType::f64:
+      return 8;
   }
   return 1;
 }
@@ -381,14 +391,22 @@ T load(const char* p, bool swap) {
 
 double load_double(const char* p, PlyType t, bool swap) {
   switch (t) {
-    case PlyType::i8: return load<int8_t>(p, swap);
-    case PlyType::u8: return load<uint8_t>(p, swap);
-    case PlyType::i16: return load<int16_t>(p, swap);
-    case PlyType::u16: return load<uint16_t>(p, swap);
-    case PlyType::i32: return load<int32_t>(p, swap);
-    case PlyType::u32: return load<uint32_t>(p, swap);
-    case PlyType::f32: return load<float>(p, swap);
-    case PlyType::f64: return load<double>(p, swap);
+    case PlyType::i8:
+      return load<int8_t>(p, swap);
+    case PlyType::u8:
+      return load<uint8_t>(p, swap);
+    case PlyType::i16:
+      return load<int16_t>(p, swap);
+    case PlyType::u16:
+      return load<uint16_t>(p, swap);
+    case PlyType::i32:
+      return load<int32_t>(p, swap);
+    case PlyType::u32:
+      return load<uint32_t>(p, swap);
+    case PlyType::f32:
+      return load<float>(p, swap);
+    case PlyType::f64:
+      return load<double>(p, swap);
   }
   return 0;
 }
@@ -396,13 +414,20 @@ double load_double(const char* p, PlyType t, bool swap) {
 // Only called for integral types (the header check makes sure).
 long long load_int(const char* p, PlyType t, bool swap) {
   switch (t) {
-    case PlyType::i8: return load<int8_t>(p, swap);
-    case PlyType::u8: return load<uint8_t>(p, swap);
-    case PlyType::i16: return load<int16_t>(p, swap);
-    case PlyType::u16: return load<uint16_t>(p, swap);
-    case PlyType::i32: return load<int32_t>(p, swap);
-    case PlyType::u32: return load<uint32_t>(p, swap);
-    default: return -1;
+    case PlyType::i8:
+      return load<int8_t>(p, swap);
+    case PlyType::u8:
+      return load<uint8_t>(p, swap);
+    case PlyType::i16:
+      return load<int16_t>(p, swap);
+    case PlyType::u16:
+      return load<uint16_t>(p, swap);
+    case PlyType::i32:
+      return load<int32_t>(p, swap);
+    case PlyType::u32:
+      return load<uint32_t>(p, swap);
+    default:
+      return -1;
   }
 }
 
@@ -439,8 +464,7 @@ size_t read_ply_header(const std::string& path, std::string_view text, std::stri
   };
   std::string_view line, word, t;
   if (next(line)) Tokens(line).next(word);
-  if (word != "ply")
-    fail(path, "is not a PLY file (it does not start with 'ply')");
+  if (word != "ply") fail(path, "is not a PLY file (it does not start with 'ply')");
   for (;;) {
     if (!next(line)) fail(path, "has no end_header line (truncated, or not a PLY file)");
     Tokens tokens(line);
@@ -450,8 +474,9 @@ size_t read_ply_header(const std::string& path, std::string_view text, std::stri
     if (word == "format") {
       tokens.next(t);
       if (t != "ascii" && t != "binary_little_endian" && t != "binary_big_endian")
-        fail_at(path, number, "unknown PLY format " + quoted(t) +
-                                  " (expected ascii, binary_little_endian or binary_big_endian)");
+        fail_at(path, number,
+                "unknown PLY format " + quoted(t) +
+                    " (expected ascii, binary_little_endian or binary_big_endian)");
       format = t;
     } else if (word == "element") {
       PlyElement e;
@@ -529,8 +554,7 @@ PolygonMesh read_ply(const std::string& path, const std::string& data) {
   double bytes_left = data.size() - start + 1.0;
   for (const PlyElement& e : elements) {
     double least = 0;
-    for (const PlyProperty& p : e.properties)
-      least += ascii ? 2 : ply_size(p.list ? p.count_type : p.type);
+    for (const PlyProperty& p : e.properties) least += ascii ? 2 : ply_size(p.list ? p.count_type : p.type);
     check_count(path, e.line, e.count, "'" + e.name + "' entries", least, bytes_left);
   }
 
@@ -542,10 +566,8 @@ PolygonMesh read_ply(const std::string& path, const std::string& data) {
     faces.offsets.reserve(face->count + 1);
     faces.indices.reserve(std::min<size_t>(3 * face->count, (data.size() - start) / 2));
   }
-  std::string what;  // "vertex 12", for messages
-  auto name_of = [&what](const PlyElement& e, long long i) -> const std::string& {
-    return what = e.name + " " + std::to_string(i);
-  };
+  // "vertex 12", for messages.
+  auto name_of = [](const PlyElement& e, long long i) { return e.name + " " + std::to_string(i); };
   auto check_vertex = [&](long long v, const PlyElement& e, long long i, long line) {
     if (v < 0 || v >= nv) {
       std::string msg = name_of(e, i) + " uses vertex " + std::to_string(v) + ", but there are only " +
@@ -567,13 +589,14 @@ PolygonMesh read_ply(const std::string& path, const std::string& data) {
       if (e.properties.empty()) continue;
       for (long long i = 0; i < e.count; ++i) {
         if (!lines.next(line))
-          fail_at(path, lines.number(), "file ends after " + std::to_string(i) + " of the " +
-                                            std::to_string(e.count) + " '" + e.name +
-                                            "' entries the header announces");
+          fail_at(path, lines.number(),
+                  "file ends after " + std::to_string(i) + " of the " + std::to_string(e.count) + " '" +
+                      e.name + "' entries the header announces");
         Tokens tokens(line);
         auto value = [&]() {
           if (!tokens.next(t))
-            fail_at(path, lines.number(), name_of(e, i) + " has fewer values than the header's properties need");
+            fail_at(path, lines.number(),
+                    name_of(e, i) + " has fewer values than the header's properties need");
           return t;
         };
         auto integer = [&]() {
@@ -588,7 +611,8 @@ PolygonMesh read_ply(const std::string& path, const std::string& data) {
             double& x = mesh.vertices(i, p.role);
             if (!to_double(t, x)) fail_at(path, lines.number(), "expected a number, got " + quoted(t));
             if (!std::isfinite(x))
-              fail_at(path, lines.number(), "vertex " + std::to_string(i) + " has a non-finite coordinate " + quoted(t));
+              fail_at(path, lines.number(),
+                      "vertex " + std::to_string(i) + " has a non-finite coordinate " + quoted(t));
             continue;
           }
           long long n = integer();
@@ -606,10 +630,12 @@ PolygonMesh read_ply(const std::string& path, const std::string& data) {
           }
         }
         if (!tokens.empty())
-          fail_at(path, lines.number(), name_of(e, i) + " has more values than the header's properties describe");
+          fail_at(path, lines.number(),
+                  name_of(e, i) + " has more values than the header's properties describe");
       }
     }
-    if (lines.next(line)) fail_at(path, lines.number(), "data continues after the last element the header announces");
+    if (lines.next(line))
+      fail_at(path, lines.number(), "data continues after the last element the header announces");
     return mesh;
   }
 

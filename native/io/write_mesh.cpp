@@ -36,8 +36,7 @@ void check_mesh(const std::string& path, const Vertices& v, const PolygonFaces& 
                        ", but there are only " + std::to_string(v.rows()) + " vertices");
   }
   for (Eigen::Index i = 0; i < v.rows(); ++i)
-    if (!v.row(i).allFinite())
-      fail(path, "vertex " + std::to_string(i) + " has a non-finite coordinate");
+    if (!v.row(i).allFinite()) fail(path, "vertex " + std::to_string(i) + " has a non-finite coordinate");
 }
 
 // Shortest text that reads back to the same double (std::to_chars).
@@ -62,8 +61,8 @@ void put_vertex(std::string& out, const Vertices& v, Eigen::Index i) {
 }
 
 std::string obj_text(const Vertices& v, const PolygonFaces& f) {
-  std::string out = "# polycube: " + std::to_string(v.rows()) + " vertices, " +
-                    std::to_string(f.count()) + " faces\n";
+  std::string out =
+      "# polycube: " + std::to_string(v.rows()) + " vertices, " + std::to_string(f.count()) + " faces\n";
   out.reserve(v.rows() * 64 + f.indices.size() * 9 + f.count() * 3);
   for (Eigen::Index i = 0; i < v.rows(); ++i) {
     out += "v ";
@@ -112,9 +111,11 @@ std::string ply_bytes(const Vertices& v, const PolygonFaces& f) {
   bool wide = largest > 255;
   std::string out =
       "ply\nformat binary_little_endian 1.0\ncomment written by polycube\n"
-      "element vertex " + std::to_string(v.rows()) +
+      "element vertex " +
+      std::to_string(v.rows()) +
       "\nproperty double x\nproperty double y\nproperty double z\n"
-      "element face " + std::to_string(f.count()) +
+      "element face " +
+      std::to_string(f.count()) +
       (wide ? "\nproperty list int int vertex_indices\n" : "\nproperty list uchar int vertex_indices\n") +
       "end_header\n";
   out.reserve(out.size() + v.rows() * 24 + f.indices.size() * 4 + f.count() * (wide ? 4 : 1));
@@ -166,7 +167,9 @@ void write_mesh(const std::string& path, const Vertices& v, const PolygonFaces& 
     fail(path, ext.empty() ? "no file extension, expected .obj, .off or .ply"
                            : "unknown mesh format '" + ext + "', expected .obj, .off or .ply");
   check_mesh(path, v, f);
-  write_file_atomically(path, ext == ".obj" ? obj_text(v, f) : ext == ".off" ? off_text(v, f) : ply_bytes(v, f));
+  write_file_atomically(path, ext == ".obj"   ? obj_text(v, f)
+                              : ext == ".off" ? off_text(v, f)
+                                              : ply_bytes(v, f));
 }
 
 }  // namespace polycube

@@ -13,6 +13,7 @@
 #include "core/deform.h"
 #include "core/nearest_labels.h"
 #include "core/quality.h"
+#include "core/refine.h"
 #include "core/triangulate.h"
 #include "io/deform_report.h"
 
@@ -133,6 +134,28 @@ py::dict figures_py(const DoubleArray& input, const DoubleArray& output, const I
   return figures_dict(QualityMeasure(mesh.vertices, triangulation.triangles, triangle_labels).measure(out));
 }
 
+py::dict refine_py(const DoubleArray& vertices, const IntArray& face_indices, const IntArray& face_sizes,
+                   const std::optional<IntArray>& labels, int levels, const std::string& scheme) {
+  const PolygonMesh mesh = to_mesh(vertices, face_indices, face_sizes);
+  const std::vector<int> face_labels = labels ? to_ints(*labels, "labels") : std::vector<int>{};
+  const RefineScheme parsed = parse_refine_scheme(scheme);
+  Refined refined;
+  {
+    py::gil_scoped_release release;
+    refined = refine(mesh, face_labels, levels, parsed);
+  }
+  auto ints = [](const std::vector<int>& v) { return py::array_t<int>(static_cast<py::ssize_t>(v.size()), v.data()); };
+  std::vector<int> sizes(refined.mesh.faces.count());
+  for (int f = 0; f < refined.mesh.faces.count(); ++f) sizes[f] = refined.mesh.faces.size(f);
+  py::dict out;
+  out["vertices"] = to_numpy(refined.mesh.vertices);
+  out["face_indices"] = ints(refined.mesh.faces.indices);
+  out["face_sizes"] = ints(sizes);
+  out["labels"] = labels ? py::object(ints(refined.labels)) : py::object(py::none());
+  out["parent_face"] = ints(refined.parent_face);
+  return out;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(polycube_native, m) {
@@ -153,4 +176,10 @@ Returns {"positions", "labels", "report"}. Raises ValueError on bad input.)");
         "Label every face by the axis nearest its normal.");
   m.def("figures", &figures_py, py::arg("input_vertices"), py::arg("output_vertices"), py::arg("face_indices"),
         py::arg("face_sizes"), py::arg("labels"), "The quality figures of output against input (DESIGN.md section 4).");
+  m.def("refine", &refine_py, py::arg("vertices"), py::arg("face_indices"), py::arg("face_sizes"),
+        py::arg("labels") = py::none(), py::kw_only(), py::arg("levels") = 1, py::arg("scheme") = "bilinear",
+        R"(Subdivide uniformly with OpenSubdiv (scheme bilinear, loop or catmark; levels 1..8).
+
+Returns {"vertices", "face_indices", "face_sizes", "labels" (None without input labels), "parent_face"};
+every child face keeps its parent's label.)");
 }

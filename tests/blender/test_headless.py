@@ -1,0 +1,176 @@
+"""The command-line script in the package: inputs of every kind, outputs, exit status."""
+
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+import bpy
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from harness import (  # noqa: E402
+    MESHES, arrays, enable_addon, labelled_sphere, nearest_axis_labels, run_tests, uv_sphere)
+
+polycube = enable_addon()
+HEADLESS = os.path.join(os.path.dirname(polycube.__file__), "headless.py")
+TMP = tempfile.mkdtemp(prefix="polycube-headless-")
+
+
+def _headless(*arguments):
+    done = subprocess.run(
+        [bpy.app.binary_path, "-b", "--factory-startup", "--python", HEADLESS, "--", *arguments],
+        capture_output=True, text=True, timeout=600)
+    print(done.stdout[-3000:], done.stderr[-3000:])
+    return done
+
+
+def _saved_objects(path):
+    """Objects of a saved .blend, appended into this session."""
+    with bpy.data.libraries.load(path) as (source, target):
+        names = list(source.objects)
+        target.objects = list(names)  # Blender fills this list in place
+    # Appended objects are renamed when this session has one of the same name.
+    return dict(zip(names, target.objects))
+
+
+def _key_names(obj):
+    return [block.name for block in obj.data.shape_keys.key_blocks] if obj.data.shape_keys else []
+
+
+def _write_off(path, mesh):
+    with open(path, "w") as file:
+        file.write(f"OFF\n# a comment\n{len(mesh.vertices)} {len(mesh.face_sizes)} 0\n")
+        np.savetxt(file, mesh.vertices, fmt="%.9g")
+        start = 0
+        for size in mesh.face_sizes:
+            corners = mesh.face_indices[start:start + size]
+            file.write(f"{size} {' '.join(map(str, corners))}\n")
+            start += size
+
+
+def _write_obj(path, mesh):
+    with open(path, "w") as file:
+        for vertex in mesh.vertices:
+            file.write("v %.9g %.9g %.9g\n" % tuple(vertex))
+        start = 0
+        for size in mesh.face_sizes:
+            corners = mesh.face_indices[start:start + size] + 1
+            file.write("f " + " ".join(map(str, corners)) + "\n")
+            start += size
+
+
+def _non_white_columns(path):
+    image = bpy.data.images.load(path)
+    try:
+        width, height = image.size
+        pixels = np.empty(width * height * 4, dtype=np.float32)
+        image.pixels.foreach_get(pixels)
+        rgb = pixels.reshape(height, width, 4)[:, :, :3]
+        return width, height, (rgb < 0.9).any(axis=(0, 2))
+    finally:
+        bpy.data.images.remove(image)
+
+
+def test_off_input_with_output_preview_and_report():
+    mesh = arrays(uv_sphere())
+    off = os.path.join(TMP, "ball.off")
+    _write_off(off, mesh)
+    out, png, js = (os.path.join(TMP, name) for name in ("ball.blend", "ball.png", "ball.json"))
+    done = _headless("--input", off, "--iterations", "200", "--animate", "--start-frame", "5",
+                     "--output", out, "--preview", png, "--report", js)
+    assert done.returncode == 0, done.stderr
+    assert "normal deviation  max" in done.stdout and "converged" in done.stdout
+
+    with open(js) as file:
+        figures = json.load(file)["ball"]
+    assert figures["converged"] is True and figures["normal_deviation_max_deg"] < 0.5
+    assert figures["flipped_faces"] == 0 and figures["animation_frames"][0] == 5
+
+    ball = _saved_objects(out)["ball"]
+    names = _key_names(ball)
+    assert names == ["Basis"] + [f"Polycube {k:03d}" for k in range(1, figures["iterations"] + 1)]
+    assert ball["polycube_report"]["iterations"] == figures["iterations"]
+    coordinates = np.empty(len(ball.data.vertices) * 3, dtype=np.float32)
+    ball.data.vertices.foreach_get("co", coordinates)
+    assert np.allclose(coordinates.reshape(-1, 3), mesh.vertices, atol=1e-6)
+
+    # The preview shows two shapes side by side on a light background.
+    width, height, ink = _non_white_columns(png)
+    assert (width, height) == (1600, 800)
+    assert ink[: width // 2].sum() > width // 8 and ink[width // 2:].sum() > width // 8
+    assert not ink[:20].any() and not ink[-20:].any()
+
+
+def test_obj_input_with_a_label_file_keeps_file_coordinates():
+    sphere = uv_sphere()
+    mesh = arrays(sphere)
+    labels = nearest_axis_labels(sphere)
+    obj_path, label_path = os.path.join(TMP, "ball.obj"), os.path.join(TMP, "ball.labels")
+    _write_obj(obj_path, mesh)
+    np.savetxt(label_path, labels, fmt="%d")
+    out, js = os.path.join(TMP, "obj.blend"), os.path.join(TMP, "obj.json")
+    done = _headless("--input", obj_path, "--labels", label_path, "--iterations", "200",
+                     "--keep", "final", "--output", out, "--report", js)
+    assert done.returncode == 0, done.stderr
+    with open(js) as file:
+        (figures,) = json.load(file).values()
+    assert figures["label_source"] == "attribute polycube_label"
+    assert figures["unlabelled_faces"] == 0 and figures["converged"] is True
+    (ball,) = _saved_objects(out).values()
+    assert len(_key_names(ball)) == 2
+    coordinates = np.empty(len(ball.data.vertices) * 3, dtype=np.float32)
+    ball.data.vertices.foreach_get("co", coordinates)
+    # Imported without axis conversion: labels are about the file's own axes.
+    assert np.allclose(coordinates.reshape(-1, 3), mesh.vertices, atol=1e-6)
+
+
+def test_blend_input_deforms_only_the_named_objects():
+    labelled_sphere("Ball")
+    labelled_sphere("Other", location=(4, 0, 0))
+    source = os.path.join(TMP, "two.blend")
+    bpy.ops.wm.save_as_mainfile(filepath=source, copy=True)
+    out = os.path.join(TMP, "two-out.blend")
+    done = _headless("--input", source, "--objects", "Ball", "--iterations", "50", "--output", out)
+    assert done.returncode == 0, done.stderr
+    saved = _saved_objects(out)
+    assert len(_key_names(saved["Ball"])) > 1 and "polycube_report" in saved["Ball"].keys()
+    assert _key_names(saved["Other"]) == [] and "polycube_report" not in saved["Other"].keys()
+
+
+def test_demo_model_when_no_input_is_given():
+    js = os.path.join(TMP, "demo.json")
+    done = _headless("--report", js)
+    assert done.returncode == 0, done.stderr
+    with open(js) as file:
+        (figures,) = json.load(file).values()
+    assert figures["label_source"] == "face maps" and figures["converged"] is True
+
+
+def test_fandisk_off_from_libcgal_demo():
+    done = _headless("--input", os.path.join(MESHES, "fandisk.off"), "--iterations", "20")
+    assert done.returncode == 0, done.stderr
+    assert "fandisk: 20 iterations" in done.stdout and "6475 vertices, 12946 faces" in done.stdout
+
+
+def test_bad_input_gives_a_message_and_a_failing_status():
+    missing = _headless("--input", os.path.join(TMP, "nothing.off"))
+    assert missing.returncode != 0 and "no such file" in missing.stderr
+    junk = os.path.join(TMP, "junk.off")
+    with open(junk, "w") as file:
+        file.write("OFF\n3 1 0\n0 0 0\n1 0 0\n")
+    broken = _headless("--input", junk)
+    assert broken.returncode != 0 and "not a valid OFF file" in broken.stderr
+    flat = os.path.join(TMP, "flat.off")
+    with open(flat, "w") as file:
+        file.write("OFF\n3 1 0\n0 0 0\n0 0 0\n0 0 0\n3 0 1 2\n")
+    refused = _headless("--input", flat)
+    assert refused.returncode != 0 and "zero area" in refused.stderr
+    labels = os.path.join(TMP, "short.labels")
+    np.savetxt(labels, [0, 1], fmt="%d")
+    short = _headless("--labels", labels)
+    assert short.returncode != 0 and "2 labels" in short.stderr
+
+
+run_tests(globals())

@@ -1,0 +1,202 @@
+// The validator (DESIGN.md section 3) on labelings whose violations are worked
+// out by hand, and the orientation check.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "core/axis.h"
+#include "core/nearest_labels.h"
+#include "core/orientation.h"
+#include "core/triangulate.h"
+#include "core/validate_labels.h"
+#include "io/labels_io.h"
+#include "io/read_mesh.h"
+#include "test_meshes.h"
+
+namespace {
+
+using namespace polycube;
+using test_meshes::LabelledMesh;
+
+// A 6x6x6 box of unit quads with its exact labels: 6 charts, 12 boundaries, 8 corners.
+LabelledMesh box6() {
+  std::set<std::array<int, 3>> voxels;
+  test_meshes::add_block(voxels, {0, 0, 0}, 6, 6, 6);
+  return test_meshes::voxel_surface(voxels);
+}
+
+Eigen::Vector3d centroid(const PolygonMesh& mesh, int f) {
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (int k = mesh.faces.offsets[f]; k < mesh.faces.offsets[f + 1]; ++k)
+    c += mesh.vertices.row(mesh.faces.indices[k]).transpose();
+  return c / mesh.faces.size(f);
+}
+
+// Faces with the given label whose centroid passes `where`.
+template <class Where>
+std::vector<int> faces_where(const LabelledMesh& m, int label, Where where) {
+  std::vector<int> faces;
+  for (int f = 0; f < m.mesh.faces.count(); ++f)
+    if (m.labels[f] == label && where(centroid(m.mesh, f))) faces.push_back(f);
+  return faces;
+}
+
+void relabel(LabelledMesh& m, const std::vector<int>& faces, int label) {
+  for (int f : faces) m.labels[f] = label;
+}
+
+int vertex_at(const PolygonMesh& mesh, Eigen::Vector3d p) {
+  for (int v = 0; v < mesh.vertices.rows(); ++v)
+    if ((mesh.vertices.row(v).transpose() - p).norm() < 1e-9) return v;
+  return -1;
+}
+
+constexpr int kPX = 0, kPY = 2, kPZ = 4, kNZ = 5;
+
+TEST(ValidateLabels, ExactBoxIsValid) {
+  const LabelledMesh box = box6();
+  const LabelValidation v = validate_labels(box.mesh, box.labels);
+  EXPECT_TRUE(v.valid());
+  EXPECT_EQ(v.charts, 6);
+  EXPECT_EQ(v.boundaries, 12);
+  EXPECT_EQ(v.corners, 8);
+  EXPECT_EQ(v.unlabelled_faces, 0);
+}
+
+TEST(ValidateLabels, UnlabelledFacesAreJudgedByTheirNearestAxis) {
+  const LabelledMesh box = box6();
+  const LabelValidation v = validate_labels(box.mesh, std::vector<int>(box.labels.size(), kUnlabelled));
+  EXPECT_TRUE(v.valid());
+  EXPECT_EQ(v.charts, 6);
+  EXPECT_EQ(v.unlabelled_faces, box.mesh.faces.count());
+}
+
+// The top split in halves, +Z and -Z: each half still touches four charts and
+// every corner joins three, so the one violation is the opposite pair.
+TEST(ValidateLabels, OppositeChartsSideBySide) {
+  LabelledMesh box = box6();
+  relabel(box, faces_where(box, kPZ, [](auto c) { return c.x() > 3; }), kNZ);
+  const LabelValidation v = validate_labels(box.mesh, box.labels);
+  ASSERT_EQ(v.violations.size(), 1u);
+  const LabelViolation& o = v.violations[0];
+  EXPECT_EQ(o.kind, ViolationKind::kOppositeNeighbours);
+  EXPECT_EQ(o.others.size(), 1u);
+  EXPECT_TRUE(o.label == kPZ || o.label == kNZ);
+  std::vector<int> along = faces_where(box, kPZ, [](auto c) { return c.x() > 2 && c.x() < 3; });
+  for (int f : faces_where(box, kNZ, [](auto c) { return c.z() > 5 && c.x() > 3 && c.x() < 4; })) along.push_back(f);
+  std::sort(along.begin(), along.end());
+  EXPECT_EQ(o.faces, along);
+  EXPECT_EQ(v.charts, 7);
+  EXPECT_EQ(v.corners, 10);
+}
+
+// One top corner quad labelled -Z: it touches the top, +X and +Y (three
+// charts), and the top is its opposite. No label for that quad avoids both.
+TEST(ValidateLabels, ChartWithThreeNeighbours) {
+  LabelledMesh box = box6();
+  const std::vector<int> patch = faces_where(box, kPZ, [](auto c) { return c.x() > 5 && c.y() > 5; });
+  ASSERT_EQ(patch.size(), 1u);
+  const std::vector<int> beside =
+      faces_where(box, kPZ, [](auto c) { return (c.x() > 5 && c.y() > 4) || (c.x() > 4 && c.y() > 5); });
+  relabel(box, patch, kNZ);
+  const LabelValidation v = validate_labels(box.mesh, box.labels);
+  ASSERT_EQ(v.violations.size(), 2u);
+  EXPECT_EQ(v.violations[0].kind, ViolationKind::kTooFewNeighbours);
+  EXPECT_EQ(v.violations[0].label, kNZ);
+  EXPECT_EQ(v.violations[0].others.size(), 3u);
+  EXPECT_EQ(v.violations[0].faces, patch);
+  EXPECT_EQ(v.violations[1].kind, ViolationKind::kOppositeNeighbours);
+  EXPECT_EQ(v.violations[1].chart, v.violations[0].chart);  // the smaller of the two
+  EXPECT_EQ(v.violations[1].faces, beside);                 // the quad and the two top quads beside it
+}
+
+// The top in quadrants: +Z, +Y (joining the +Y side), +Z again, +X (joining
+// the +X side). Four charts meet at the centre; the second +Z quadrant is then
+// enclosed by +X and +Y alone.
+TEST(ValidateLabels, FourChartCorner) {
+  LabelledMesh box = box6();
+  relabel(box, faces_where(box, kPZ, [](auto c) { return c.x() < 3 && c.y() > 3; }), kPY);
+  relabel(box, faces_where(box, kPZ, [](auto c) { return c.x() > 3 && c.y() < 3; }), kPX);
+  const std::vector<int> enclosed = faces_where(box, kPZ, [](auto c) { return c.x() > 3 && c.y() > 3; });
+  const LabelValidation v = validate_labels(box.mesh, box.labels);
+  ASSERT_EQ(v.violations.size(), 2u);
+  EXPECT_EQ(v.violations[0].kind, ViolationKind::kTooFewNeighbours);
+  EXPECT_EQ(v.violations[0].faces, enclosed);
+  EXPECT_EQ(v.violations[0].others.size(), 2u);
+  const LabelViolation& corner = v.violations[1];
+  EXPECT_EQ(corner.kind, ViolationKind::kCornerTooManyCharts);
+  EXPECT_EQ(corner.vertex, vertex_at(box.mesh, {3, 3, 6}));
+  EXPECT_EQ(corner.others.size(), 3u);
+  EXPECT_EQ(corner.faces.size(), 4u);
+}
+
+TEST(ValidateLabels, B0PublishedLabelingIsValid) {
+  const std::string dir = std::string(POLYCUBE_SHARED_DATA) + "/B0";
+  if (!std::ifstream(dir + "/surface.obj").good()) GTEST_SKIP() << dir << " is missing";
+  const PolygonMesh mesh = read_mesh(dir + "/surface.obj");
+  const std::vector<int> labels = read_labels(dir + "/labeling.txt", mesh.faces.count());
+  const LabelValidation v = validate_labels(mesh, labels);
+  std::printf("  B0: %d charts, %d boundaries, %d corners, %zu violations\n", v.charts, v.boundaries, v.corners,
+              v.violations.size());
+  for (const LabelViolation& violation : v.violations)
+    std::printf("    %s chart %d (%zu faces)\n", violation_kind_name(violation.kind), violation.chart,
+                violation.faces.size());
+  EXPECT_TRUE(v.valid());
+  EXPECT_GE(v.charts, 6);
+}
+
+TEST(ValidateLabels, RejectsBadLabels) {
+  const LabelledMesh box = box6();
+  std::vector<int> labels = box.labels;
+  labels[3] = 6;
+  EXPECT_THROW(validate_labels(box.mesh, labels), Error);
+  labels.pop_back();
+  EXPECT_THROW(validate_labels(box.mesh, labels), Error);
+}
+
+PolygonMesh reversed(PolygonMesh mesh) {
+  for (int f = 0; f < mesh.faces.count(); ++f)
+    std::reverse(mesh.faces.indices.begin() + mesh.faces.offsets[f], mesh.faces.indices.begin() + mesh.faces.offsets[f + 1]);
+  return mesh;
+}
+
+TEST(Orientation, OutwardInwardInconsistentAndNonOrientable) {
+  const PolygonMesh sphere = test_meshes::uv_sphere(16, 8);
+  const std::vector<int> labels = nearest_labels(sphere);
+  const Orientation out = orientation(sphere, &labels);
+  EXPECT_TRUE(out.orientable);
+  EXPECT_TRUE(out.consistent);
+  EXPECT_EQ(out.components, 1);
+  EXPECT_EQ(out.closed_components, 1);
+  EXPECT_FALSE(out.inward());
+  EXPECT_FALSE(out.labels_opposite);
+  EXPECT_LT(out.area_against_labels, 1e-12);
+
+  // Inward copy with the outward labels: detected both ways; flipping the labels fits the winding.
+  const PolygonMesh inside_out = reversed(sphere);
+  const Orientation in = orientation(inside_out, &labels);
+  EXPECT_TRUE(in.consistent);
+  EXPECT_TRUE(in.inward());
+  EXPECT_TRUE(in.labels_opposite);
+  EXPECT_GT(in.area_against_labels, 0.999);
+  const std::vector<int> flipped = flip_labels(labels);
+  EXPECT_FALSE(orientation(inside_out, &flipped).labels_opposite);
+  EXPECT_EQ(flip_labels(flipped), labels);
+  EXPECT_EQ(flip_labels({-1, 0, 3, 4}), (std::vector<int>{-1, 1, 2, 5}));
+
+  PolygonMesh one_flipped = sphere;
+  std::reverse(one_flipped.faces.indices.begin() + one_flipped.faces.offsets[20],
+               one_flipped.faces.indices.begin() + one_flipped.faces.offsets[21]);
+  const Orientation mixed = orientation(one_flipped);
+  EXPECT_TRUE(mixed.orientable);
+  EXPECT_FALSE(mixed.consistent);
+  EXPECT_EQ(mixed.inconsistent_edges, 4);
+  EXPECT_FALSE(mixed.inward());
+
+  const Orientation moebius = orientation(test_meshes::moebius_strip(40, 3));
+  EXPECT_FALSE(moebius.orientable);
+  EXPECT_FALSE(moebius.consistent);
+  EXPECT_EQ(moebius.closed_components, 0);
+}
+
+}  // namespace
