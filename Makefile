@@ -8,7 +8,7 @@ JOBS    ?= 2
 VERSION := $(shell sed -n 's/^version *= *"\(.*\)"/\1/p' blender_manifest.toml 2>/dev/null)
 
 # Debian packages the build, the tests and the demo need.
-DEB_PACKAGES := cmake g++ make pkg-config libeigen3-dev pybind11-dev python3-dev \
+DEB_PACKAGES := cmake g++ make pkg-config libeigen3-dev pybind11-dev python3-dev libboost-graph-dev \
   python3-numpy python3-pytest python3-scipy libgtest-dev libosd-dev \
   libsuitesparse-dev libcgal-demo blender xvfb xauth zip
 
@@ -59,6 +59,11 @@ package: build
 	find $(BUILD)/package -name __pycache__ -prune -exec rm -rf {} +
 	cd $(BUILD)/package && zip -qr ../../dist/polycube-$(VERSION).zip polycube
 	@echo "Wrote dist/polycube-$(VERSION).zip"
+
+# Speed, memory and ratios against the paper-literal variant and a SciPy
+# reference, on real models and their ~1M-triangle refinements (not part of test).
+bench: build data
+	$(PYTHON) tests/benchmark/bench.py --build $(BUILD)
 
 clean:
 	rm -rf $(BUILD) dist addon/*.so

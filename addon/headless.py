@@ -54,7 +54,8 @@ def main(argv):
             keep=args.keep.upper(), keep_every=args.keep_every, animate=args.animate,
             start_frame=args.start_frame)
     except RuntimeError as error:
-        print(f"polycube: {str(error).strip()}", file=sys.stderr)
+        # bpy turns the operator's error reports into this exception, "Error: ..." each.
+        print(f"polycube: {str(error).strip().removeprefix('Error: ')}", file=sys.stderr)
         return 1
 
     reports = {obj.name: package.report.load_report(obj) for obj in targets if obj.type == 'MESH'}

@@ -26,6 +26,9 @@ class Labels(NamedTuple):
     source: str         # where they came from, for the panel and the report
 
 
+NO_LABELS = "none"
+
+
 def read_labels(obj):
     """The labels of a mesh object; ValueError with one sentence when they are junk."""
     mesh = obj.data
@@ -39,7 +42,7 @@ def read_labels(obj):
     if attribute is not None:
         return Labels(_read_face_maps_attribute(mesh, attribute, face_count),
                       f"attribute {FACE_MAPS_ATTRIBUTE}")
-    return Labels(np.full(face_count, -1, dtype=np.int32), "none")
+    return Labels(np.full(face_count, -1, dtype=np.int32), NO_LABELS)
 
 
 def label_counts(values):

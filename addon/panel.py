@@ -4,6 +4,7 @@
 import bpy
 
 from .label_cache import label_summary
+from .labels import NO_LABELS
 from .operators import OBJECT_OT_polycube_deform
 from .polycube_native import LABEL_NAMES
 from .report import load_report
@@ -50,8 +51,8 @@ def _draw_labels(layout, obj):
             line += word + " "
         layout.label(text=line)
         return
-    source = summary.source if summary.source != "none" else "none: nearest axis"
-    layout.label(text=f"Labels: {source}", icon='FACE_MAPS')
+    source = "None: nearest axis" if summary.source == NO_LABELS else summary.source.capitalize()
+    layout.label(text=source, icon='FACE_MAPS')
     grid = layout.grid_flow(row_major=True, columns=2, even_columns=True, align=True)
     for name, count in zip(LABEL_NAMES, summary.counts):
         grid.label(text=f"{name}: {count}")

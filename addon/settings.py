@@ -16,8 +16,8 @@ class DeformSettings:
         name="Iterations", description="Most solver iterations to run",
         default=100, min=1, soft_max=1000)
     tolerance: FloatProperty(
-        name="Tolerance (°)",
-        description="Stop once every face's normal is this close to its label's axis, in degrees",
+        name="Tolerance",
+        description="Stop once every face's normal is within this many degrees of its label's axis",
         default=0.5, min=1e-4, soft_max=10.0, precision=3)
     variant: EnumProperty(
         name="Solver", description="Which Laplacian the solver uses",

@@ -6,6 +6,7 @@
 
 #include "cli/arguments.h"
 #include "cli/commands.h"
+#include "cli/peak_memory.h"
 #include "cli/label_source.h"
 #include "core/auto_labels.h"
 #include "core/deform.h"
@@ -59,7 +60,9 @@ int deform_command(const std::vector<std::string>& args) {
   const DeformResult result = deform(mesh, labels, options, show_progress);
   if (progress && result.iterations > 0) std::fprintf(stderr, "\n");
 
-  const std::string report = deform_report_json(mesh, result, options);
+  JsonWriter json = deform_report(mesh, result, options);
+  json.add("peak_mib", peak_resident_mib());
+  const std::string report = json.str();
   if (arguments.has("output")) write_mesh(arguments.get("output", ""), result.positions, mesh.faces);
   if (arguments.has("report")) write_file_atomically(arguments.get("report", ""), report + "\n");
   std::printf("%s\n", report.c_str());

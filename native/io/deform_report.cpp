@@ -11,7 +11,7 @@ void add_figures(JsonWriter& json, const Figures& f) {
       .add("collapsed_faces", f.collapsed_faces);
 }
 
-std::string deform_report_json(const PolygonMesh& mesh, const DeformResult& r, const DeformOptions& options) {
+JsonWriter deform_report(const PolygonMesh& mesh, const DeformResult& r, const DeformOptions& options) {
   JsonWriter json;
   json.add("vertices", static_cast<long>(mesh.vertices.rows()))
       .add("faces", mesh.faces.count())
@@ -31,7 +31,7 @@ std::string deform_report_json(const PolygonMesh& mesh, const DeformResult& r, c
       .add("solve", r.seconds.solve)
       .add("measure", r.seconds.measure)
       .end();
-  return json.str();
+  return json;
 }
 
 }  // namespace polycube

@@ -14,7 +14,13 @@ namespace polycube {
 void add_figures(JsonWriter& json, const Figures& figures);
 
 // vertices, faces, triangles, iterations, converged, stopped, unlabelled_faces,
-// variant, tolerance_deg, the figures, and seconds per phase.
-std::string deform_report_json(const PolygonMesh& mesh, const DeformResult& result, const DeformOptions& options);
+// variant, tolerance_deg, the figures, and seconds per phase. The root object
+// stays open, so a caller can add what only it knows (the program's memory).
+JsonWriter deform_report(const PolygonMesh& mesh, const DeformResult& result, const DeformOptions& options);
+
+inline std::string deform_report_json(const PolygonMesh& mesh, const DeformResult& result,
+                                      const DeformOptions& options) {
+  return deform_report(mesh, result, options).str();
+}
 
 }  // namespace polycube

@@ -16,6 +16,7 @@
 #include "core/refine.h"
 #include "core/triangulate.h"
 #include "io/deform_report.h"
+#include "io/read_mesh.h"
 
 namespace py = pybind11;
 using namespace polycube;
@@ -67,6 +68,10 @@ py::array_t<double> to_numpy(const Vertices& v) {
   return out;
 }
 
+py::array_t<int> to_int_array(const std::vector<int>& v) {
+  return py::array_t<int>(static_cast<py::ssize_t>(v.size()), v.data());
+}
+
 py::object json_loads(const std::string& text) { return py::module_::import("json").attr("loads")(text); }
 
 py::dict figures_dict(const Figures& figures) {
@@ -102,7 +107,7 @@ py::dict deform_py(const DoubleArray& vertices, const IntArray& face_indices, co
   }
   py::dict out;
   out["positions"] = to_numpy(result.positions);
-  out["labels"] = py::array_t<int>(static_cast<py::ssize_t>(result.labels.size()), result.labels.data());
+  out["labels"] = to_int_array(result.labels);
   out["report"] = json_loads(deform_report_json(mesh, result, options));
   return out;
 }
@@ -112,7 +117,7 @@ py::array_t<int> nearest_labels_py(const DoubleArray& vertices, const IntArray& 
   const PolygonMesh mesh = to_mesh(vertices, face_indices, face_sizes);
   check_input(mesh);
   const std::vector<int> labels = nearest_labels(mesh);
-  return py::array_t<int>(static_cast<py::ssize_t>(labels.size()), labels.data());
+  return to_int_array(labels);
 }
 
 py::dict figures_py(const DoubleArray& input, const DoubleArray& output, const IntArray& face_indices,
@@ -144,16 +149,26 @@ py::dict refine_py(const DoubleArray& vertices, const IntArray& face_indices, co
     py::gil_scoped_release release;
     refined = refine(mesh, face_labels, levels, parsed);
   }
-  auto ints = [](const std::vector<int>& v) { return py::array_t<int>(static_cast<py::ssize_t>(v.size()), v.data()); };
   std::vector<int> sizes(refined.mesh.faces.count());
   for (int f = 0; f < refined.mesh.faces.count(); ++f) sizes[f] = refined.mesh.faces.size(f);
   py::dict out;
   out["vertices"] = to_numpy(refined.mesh.vertices);
-  out["face_indices"] = ints(refined.mesh.faces.indices);
-  out["face_sizes"] = ints(sizes);
-  out["labels"] = labels ? py::object(ints(refined.labels)) : py::object(py::none());
-  out["parent_face"] = ints(refined.parent_face);
+  out["face_indices"] = to_int_array(refined.mesh.faces.indices);
+  out["face_sizes"] = to_int_array(sizes);
+  out["labels"] = labels ? py::object(to_int_array(refined.labels)) : py::object(py::none());
+  out["parent_face"] = to_int_array(refined.parent_face);
   return out;
+}
+
+py::tuple read_mesh_py(const std::string& path) {
+  PolygonMesh mesh;
+  {
+    py::gil_scoped_release release;
+    mesh = read_mesh(path);
+  }
+  std::vector<int> sizes(mesh.faces.count());
+  for (int f = 0; f < mesh.faces.count(); ++f) sizes[f] = mesh.faces.size(f);
+  return py::make_tuple(to_numpy(mesh.vertices), to_int_array(mesh.faces.indices), to_int_array(sizes));
 }
 
 }  // namespace
@@ -182,4 +197,6 @@ Returns {"positions", "labels", "report"}. Raises ValueError on bad input.)");
 
 Returns {"vertices", "face_indices", "face_sizes", "labels" (None without input labels), "parent_face"};
 every child face keeps its parent's label.)");
+  m.def("read_mesh", &read_mesh_py, py::arg("path"),
+        "Read an .off, .obj or .ply file: (vertices (n, 3), face_indices, face_sizes). Raises ValueError.");
 }

@@ -18,6 +18,14 @@ ROOT = os.environ.get("POLYCUBE_ROOT", os.path.dirname(os.path.dirname(os.path.d
 MESHES = os.path.join(ROOT, "build", "data", "meshes")
 
 
+def scratch_folder(name):
+    """A folder for files a test writes; run.py removes them all at the end."""
+    root = os.environ.get("POLYCUBE_TEST_TMP") or os.path.join(ROOT, "build", "test-tmp")
+    folder = os.path.join(root, name)
+    os.makedirs(folder, exist_ok=True)
+    return folder
+
+
 def enable_addon():
     """Enable the installed add-on through the preferences operator, as the UI does."""
     result = bpy.ops.preferences.addon_enable(module="polycube")

@@ -39,7 +39,7 @@ def main():
                BLENDER_USER_SCRIPTS=os.path.join(home, "scripts"),
                BLENDER_USER_CONFIG=os.path.join(home, "config"),
                POLYCUBE_ROOT=ROOT, POLYCUBE_ZIP=os.path.abspath(args.zip),
-               POLYCUBE_TEST_FILTER=args.filter)
+               POLYCUBE_TEST_FILTER=args.filter, POLYCUBE_TEST_TMP=os.path.join(home, "tmp"))
     try:
         passed, failed = 0, 0
         install = _install(args, env)

@@ -4,18 +4,18 @@ import json
 import os
 import subprocess
 import sys
-import tempfile
 
 import bpy
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from harness import (  # noqa: E402
-    MESHES, arrays, enable_addon, labelled_sphere, nearest_axis_labels, run_tests, uv_sphere)
+    MESHES, arrays, enable_addon, labelled_sphere, nearest_axis_labels, run_tests, scratch_folder,
+    uv_sphere)
 
 polycube = enable_addon()
 HEADLESS = os.path.join(os.path.dirname(polycube.__file__), "headless.py")
-TMP = tempfile.mkdtemp(prefix="polycube-headless-")
+TMP = scratch_folder("headless")
 
 
 def _headless(*arguments):

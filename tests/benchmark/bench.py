@@ -1,0 +1,165 @@
+#!/usr/bin/env python3
+"""`make bench`: speed and memory of the native solver on real models, with
+ratios measured in the same run (DESIGN.md, issue "Scale and speed").
+
+For every model it runs, each in its own process (for its peak memory):
+- our default variant to the tolerance;
+- the paper-literal variant (`current`: refactorise every iteration) to the
+  same tolerance, or the same iteration limit;
+- the NumPy/SciPy reference (reference_scipy.py) of the same algorithm.
+
+Ratios:
+- ratio_floor: our total / (one factorisation + as many back-substitutions as
+  we ran iterations), the linear algebra we cannot avoid;
+- ratio_paper: our total / the paper-literal total;
+- ratio_scipy: our total / the SciPy reference's time for the same iterations
+  (the reference runs at most --scipy-iterations and is extrapolated from its
+  setup and per-iteration times, said so in the table).
+
+Writes build/bench/results.md and results.json.
+"""
+import argparse
+import json
+import pathlib
+import subprocess
+import sys
+import time
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+
+MODELS = [  # name, mesh, labels, refinement levels to reach about a million triangles
+    ("fandisk", "build/data/meshes/fandisk.off", "nearest", 3),
+    ("armadillo", "build/data/meshes/armadillo.off", "nearest", 2),
+    ("bunny00", "build/data/meshes/bunny00.off", "nearest", 2),
+    ("B0", "../shared/data/B0/surface.obj", "../shared/data/B0/labeling.txt", 3),
+]
+
+
+def native_run(program, mesh, labels, variant, iterations, tolerance):
+    """The program's report, which includes its own peak memory (peak_mib)."""
+    run = subprocess.run([program, "deform", mesh, "--labels", labels, "--variant", variant,
+                          "--iterations", str(iterations), "--tolerance", str(tolerance)],
+                         capture_output=True, text=True)
+    if run.returncode != 0:
+        raise RuntimeError(f"{mesh} ({variant}) failed: {run.stderr.strip()}")
+    return json.loads(run.stdout)
+
+
+def scipy_seconds(mesh, labels, variant, iterations, limit):
+    """Times the reference: setup + first iterations, extrapolated to `iterations`."""
+    import numpy as np
+    import polycube_native as native
+    import reference_scipy
+
+    vertices, indices, sizes = native.read_mesh(mesh)
+    if not (sizes == 3).all():
+        return float("nan"), 0
+    label_array = (native.nearest_labels(vertices, indices, sizes) if labels == "nearest"
+                   else np.loadtxt(labels, dtype=int, comments="#"))
+    triangles = indices.reshape(-1, 3)
+    run = min(iterations, limit)
+    start = time.perf_counter()
+    reference_scipy.deform(vertices, triangles, label_array, 1, variant)
+    first = time.perf_counter() - start
+    if run <= 1:
+        return first * max(iterations, 1), run
+    start = time.perf_counter()
+    reference_scipy.deform(vertices, triangles, label_array, run, variant)
+    many = time.perf_counter() - start
+    per_iteration = (many - first) / (run - 1)
+    return first + per_iteration * (iterations - 1), run
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--build", default=str(ROOT / "build"))
+    parser.add_argument("--iterations", type=int, default=200)
+    parser.add_argument("--tolerance", type=float, default=0.5)
+    parser.add_argument("--default-variant", default="fixed")
+    parser.add_argument("--scipy-iterations", type=int, default=5)
+    parser.add_argument("--models", default=",".join(m[0] for m in MODELS))
+    parser.add_argument("--no-refined", action="store_true", help="skip the ~1M-triangle refined models")
+    args = parser.parse_args()
+
+    build = pathlib.Path(args.build).resolve()
+    sys.path.insert(0, str(build))
+    program = str(build / "polycube")
+    out_dir = build / "bench"
+    (out_dir / "models").mkdir(parents=True, exist_ok=True)
+
+    cases = []
+    for name, mesh, labels, levels in MODELS:
+        if name not in args.models.split(","):
+            continue
+        mesh_path = (ROOT / mesh).resolve()
+        labels_arg = labels if labels == "nearest" else str((ROOT / labels).resolve())
+        if not mesh_path.exists():
+            print(f"skipping {name}: {mesh_path} is missing (run `make data`)", file=sys.stderr)
+            continue
+        cases.append((name, str(mesh_path), labels_arg))
+        if args.no_refined:
+            continue
+        refined = out_dir / "models" / f"{name}-x{4 ** levels}.ply"
+        if not refined.exists():
+            command = [program, "refine", str(mesh_path), "--levels", str(levels), "--scheme", "bilinear",
+                       "--output", str(refined)]
+            if labels != "nearest":
+                command += ["--labels", labels_arg]
+            subprocess.run(command, check=True, capture_output=True)
+        refined_labels = labels if labels == "nearest" else str(refined) + ".labels"
+        cases.append((f"{name} x{4 ** levels}", str(refined), refined_labels))
+
+    rows = []
+    for name, mesh, labels in cases:
+        print(f"{name}: ", end="", flush=True, file=sys.stderr)
+        ours = native_run(program, mesh, labels, args.default_variant, args.iterations, args.tolerance)
+        print(f"default {ours['seconds']['total']:.2f}s, ", end="", flush=True, file=sys.stderr)
+        paper = native_run(program, mesh, labels, "current", args.iterations, args.tolerance)
+        print(f"paper {paper['seconds']['total']:.2f}s, ", end="", flush=True, file=sys.stderr)
+        scipy_total, scipy_ran = scipy_seconds(mesh, labels, args.default_variant, max(ours["iterations"], 1),
+                                               args.scipy_iterations)
+        print(f"scipy {scipy_total:.2f}s", file=sys.stderr)
+        seconds = ours["seconds"]
+        factorizations = ours.get("factorizations", 1 if args.default_variant == "fixed" else ours["iterations"])
+        floor = seconds["factorize"] / max(factorizations, 1) + seconds["solve"]
+        for variant, report in ((args.default_variant, ours), ("current (paper)", paper)):
+            row = {
+                "model": name, "triangles": report["triangles"], "variant": variant,
+                "iterations": report["iterations"], "converged": report["converged"],
+                "seconds_total": report["seconds"]["total"],
+                **{f"seconds_{k}": v for k, v in report["seconds"].items() if k != "total"},
+                "peak_mib": report["peak_mib"], "flipped_faces": report["flipped_faces"],
+                "collapsed_faces": report["collapsed_faces"],
+                "normal_deviation_max_deg": report["normal_deviation_max_deg"],
+                "normal_deviation_mean_deg": report["normal_deviation_mean_deg"],
+                "edge_error": report["edge_error"], "area_error": report["area_error"],
+            }
+            if report is ours:
+                row.update(ratio_floor=seconds["total"] / floor if floor > 0 else float("nan"),
+                           ratio_paper=seconds["total"] / paper["seconds"]["total"],
+                           ratio_scipy=seconds["total"] / scipy_total,
+                           scipy_seconds=scipy_total, scipy_iterations_timed=scipy_ran)
+            rows.append(row)
+
+    (out_dir / "results.json").write_text(json.dumps(rows, indent=2) + "\n")
+    columns = ["model", "triangles", "variant", "iterations", "converged", "seconds_total", "seconds_factorize",
+               "seconds_solve", "peak_mib", "flipped_faces", "collapsed_faces", "normal_deviation_max_deg",
+               "edge_error", "area_error", "ratio_floor", "ratio_paper", "ratio_scipy"]
+
+    def cell(row, key):
+        value = row.get(key, "")
+        return f"{value:.3f}" if isinstance(value, float) else str(value)
+
+    lines = ["| " + " | ".join(columns) + " |", "|" + "---|" * len(columns)]
+    lines += ["| " + " | ".join(cell(row, key) for key in columns) + " |" for row in rows]
+    lines.append("")
+    lines.append(f"ratio_scipy: the SciPy reference timed for up to {args.scipy_iterations} iterations and "
+                 "extrapolated to ours. ratio_floor: one factorisation plus our back-substitutions.")
+    table = "\n".join(lines)
+    (out_dir / "results.md").write_text(table + "\n")
+    print(table)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,199 @@
+"""The add-on in Blender's real window (run.py starts this under Xvfb, not -b).
+
+The Polycube sidebar tab is opened the way a user does it (wheel over the tabs,
+through simulated events), the panel must draw, the button's modal run must keep
+Blender's event loop going while it writes iterations, Esc must stop it keeping
+what is written, and undo must take the operator's step back. A screenshot of the
+window with the panel is kept at build/ui/polycube-panel.png.
+
+Blender's event loop has to run for all of this, so the tests are generators
+stepped from a timer: each `yield` hands control back to Blender for that many
+seconds.
+"""
+
+import os
+import sys
+import time
+import traceback
+
+import bpy
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from harness import (  # noqa: E402
+    RESULT_PREFIX, ROOT, enable_addon, key_names, labelled_sphere, report, select_only, uv_sphere)
+
+polycube = enable_addon()
+SCREENSHOT = os.path.join(ROOT, "build", "ui", "polycube-panel.png")
+SCRIPT = os.path.basename(__file__)
+
+# What the panel's draw() saw, recorded by wrapping it (the add-on has no test hooks).
+panel_draws = []
+_draw = bpy.types.VIEW3D_PT_polycube.draw
+
+
+def _recording_draw(self, context):
+    _draw(self, context)  # an exception here means no record: the panel failed to draw
+    obj = context.active_object
+    panel_draws.append((obj.name if obj else None, obj is not None and report(obj) is not None))
+
+
+bpy.types.VIEW3D_PT_polycube.draw = _recording_draw
+
+
+def _view3d():
+    window = bpy.context.window_manager.windows[0]
+    area = next(area for area in window.screen.areas if area.type == 'VIEW_3D')
+    regions = {region.type: region for region in area.regions}
+    return window, area, regions["WINDOW"], regions["UI"]
+
+
+def _override():
+    window, area, region, _ = _view3d()
+    return bpy.context.temp_override(window=window, area=area, region=region)
+
+
+def _wait_until(condition, what, timeout=60.0):
+    start = time.monotonic()
+    while not condition():
+        if time.monotonic() - start > timeout:
+            raise AssertionError(f"timed out waiting for {what}")
+        yield 0.1
+
+
+def _redraw():
+    for area in bpy.context.window_manager.windows[0].screen.areas:
+        area.tag_redraw()
+
+
+def test_sidebar_tab_draws_the_panel():
+    window, area, _, sidebar = _view3d()
+    window.event_simulate(type='ESC', value='PRESS')  # close the splash screen
+    window.event_simulate(type='ESC', value='RELEASE')
+    area.spaces.active.show_region_ui = True
+    labelled_sphere("Panel sphere")
+    yield 0.5
+    for _ in range(10):  # Item, Tool, View, ... : wheel over the tabs to reach Polycube
+        if panel_draws:
+            break
+        _, _, _, sidebar = _view3d()
+        x, y = sidebar.x + sidebar.width - 8, sidebar.y + sidebar.height // 2
+        window.event_simulate(type='MOUSEMOVE', value='NOTHING', x=x, y=y)
+        window.event_simulate(type='WHEELDOWNMOUSE', value='PRESS', x=x, y=y, ctrl=True)
+        yield 0.3
+    assert panel_draws, "the Polycube panel never drew"
+    assert panel_draws[-1][0] == "Panel sphere"
+
+
+def test_button_run_is_modal_and_finishes():
+    sphere = labelled_sphere("Modal sphere")
+    with _override():
+        assert bpy.ops.object.polycube_deform('INVOKE_DEFAULT', iterations=200) == {'RUNNING_MODAL'}
+    yield from _wait_until(lambda: report(bpy.data.objects["Modal sphere"]) is not None, "the modal run")
+    sphere = bpy.data.objects["Modal sphere"]
+    result = report(sphere)
+    assert result["converged"] and result["normal_deviation_max_deg"] < 0.5, result
+    assert key_names(sphere) == ["Basis"] + [f"Polycube {k:03d}" for k in range(1, result["iterations"] + 1)]
+
+    bpy.ops.ed.undo()  # the modal operator's own undo step
+    yield 0.2
+    sphere = bpy.data.objects["Modal sphere"]
+    assert sphere.data.shape_keys is None and report(sphere) is None
+
+
+def test_long_run_keeps_blender_responsive_and_esc_keeps_iterations():
+    big = uv_sphere("Big sphere", segments=128, rings=64)
+    select_only(big)
+    with _override():
+        bpy.ops.object.polycube_deform('INVOKE_DEFAULT', iterations=100000, tolerance=1e-6)
+    counts = []
+    for _ in range(400):  # each step is Blender's event loop coming back to this timer
+        counts.append(len(key_names(big)))
+        if counts[-1] > 6:
+            break
+        yield 0.05
+    assert report(big) is None, "the run ended by itself"
+    assert len(set(counts)) >= 3, f"no progress seen between timer steps: {counts}"
+    window = _view3d()[0]
+    window.event_simulate(type='ESC', value='PRESS')
+    window.event_simulate(type='ESC', value='RELEASE')
+    yield from _wait_until(lambda: report(big) is not None, "the run to stop after Esc")
+    result = report(big)
+    assert result["stopped"] and not result["converged"], result
+    assert counts[-1] - 1 <= result["iterations"] < 1000, result["iterations"]
+    assert key_names(big)[1:] == [f"Polycube {k:06d}" for k in range(1, result["iterations"] + 1)]
+    assert big.data.shape_keys.key_blocks[-1].value == 1.0
+
+
+def test_operator_from_a_script_pushes_an_undo_step():
+    sphere = labelled_sphere("Script sphere")
+    raw = np.array([v.co[:] for v in sphere.data.vertices])
+    with _override():
+        bpy.ops.object.polycube_deform(iterations=200)
+    assert report(bpy.data.objects["Script sphere"])["converged"]
+    with _override():
+        bpy.ops.ed.undo()
+    sphere = bpy.data.objects["Script sphere"]
+    assert sphere.data.shape_keys is None and report(sphere) is None
+    assert np.array_equal(np.array([v.co[:] for v in sphere.data.vertices]), raw)
+    with _override():
+        bpy.ops.ed.redo()
+    assert report(bpy.data.objects["Script sphere"])["converged"]
+    yield 0.1
+
+
+def test_panel_shows_the_last_run_and_screenshot():
+    sphere = labelled_sphere("Shown sphere")
+    with _override():
+        bpy.ops.object.polycube_deform(iterations=200, animate=True)
+    panel_draws.clear()
+    _redraw()
+    yield from _wait_until(lambda: ("Shown sphere", True) in panel_draws, "the panel with a report")
+    yield 0.3
+    os.makedirs(os.path.dirname(SCREENSHOT), exist_ok=True)
+    window = _view3d()[0]
+    with bpy.context.temp_override(window=window, screen=window.screen):
+        bpy.ops.screen.screenshot(filepath=SCREENSHOT)
+    assert os.path.getsize(SCREENSHOT) > 10000
+    image = bpy.data.images.load(SCREENSHOT)
+    width, height = image.size
+    pixels = np.empty(width * height * 4, dtype=np.float32)
+    image.pixels.foreach_get(pixels)
+    _, _, _, sidebar = _view3d()
+    crop = pixels.reshape(height, width, 4)[sidebar.y:sidebar.y + sidebar.height,
+                                            sidebar.x:sidebar.x + sidebar.width, :3]
+    # Text and widgets, not an empty region: many distinct shades.
+    assert len(np.unique(np.round(crop.reshape(-1, 3), 2), axis=0)) > 50
+    assert sphere.polycube_scrub == 1.0
+
+
+TESTS = [test_sidebar_tab_draws_the_panel, test_button_run_is_modal_and_finishes,
+         test_long_run_keeps_blender_responsive_and_esc_keeps_iterations,
+         test_operator_from_a_script_pushes_an_undo_step, test_panel_shows_the_last_run_and_screenshot]
+wanted = os.environ.get("POLYCUBE_TEST_FILTER", "")
+TESTS = [test for test in TESTS if wanted in f"{SCRIPT}::{test.__name__}"]
+_state = {"index": 0, "steps": None, "failed": 0}
+
+
+def _step():
+    """Timer: advance the current test generator; report and move on when it ends."""
+    if _state["index"] == len(TESTS):
+        sys.stdout.flush()
+        os._exit(1 if _state["failed"] else 0)
+    test = TESTS[_state["index"]]
+    try:
+        if _state["steps"] is None:
+            _state["steps"] = test()
+        return next(_state["steps"]) or 0.05
+    except StopIteration:
+        print(f"{RESULT_PREFIX} PASS {SCRIPT}::{test.__name__}", flush=True)
+    except Exception:
+        traceback.print_exc()
+        print(f"{RESULT_PREFIX} FAIL {SCRIPT}::{test.__name__}", flush=True)
+        _state["failed"] += 1
+    _state["index"] += 1
+    _state["steps"] = None
+    return 0.05
+
+
+bpy.app.timers.register(_step, first_interval=1.0)
