@@ -29,6 +29,7 @@ constexpr double kRelativeShift = 1e-8;
 
 // The robust variant's step control and phase switch (see deform.h).
 constexpr int kMaxHalvings = 6;
+constexpr int kMaxFreezeRounds = 20;
 constexpr int kMaxFitIterations = 30;
 constexpr double kFitStepTolerance = 1e-3;
 
@@ -201,6 +202,15 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
           }
         }
         if (!folds) break;
+        // A triangle whose corners all stand still can still change class
+        // when the global scale s moves the collapse threshold; give up on
+        // the step rather than loop.
+        if (rounds == kMaxHalvings + kMaxFreezeRounds) {
+          std::fill(alpha.begin(), alpha.end(), 0.0);
+          candidate = x;
+          candidate_state = state;
+          break;
+        }
       }
       for (int v = 0; v < n; ++v) limited += alpha[v] < 1.0;
       {

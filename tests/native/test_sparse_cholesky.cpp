@@ -1,0 +1,54 @@
+#include <gtest/gtest.h>
+
+#include "core/laplacian.h"
+#include "core/sparse_cholesky.h"
+#include "core/triangulate.h"
+#include "test_meshes.h"
+
+namespace {
+
+using namespace polycube;
+
+SparseMatrix shifted_laplacian(const PolygonMesh& mesh) {
+  const Triangles t = triangulate(mesh.vertices, mesh.faces).triangles;
+  Laplacian laplacian(static_cast<int>(mesh.vertices.rows()), t);
+  laplacian.assemble(cotangent_weights(mesh.vertices, t), 1e-6);
+  return laplacian.matrix();
+}
+
+double relative_residual(const SparseMatrix& a, const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& b) {
+  return (a * x - b).norm() / b.norm();
+}
+
+TEST(SparseCholesky, SmallAndLargeSystemsSolveAccurately) {
+  for (const auto& [mesh, expected] : {std::pair{test_meshes::uv_sphere(32, 16), "eigen-simplicial"},
+                                       std::pair{test_meshes::uv_sphere(400, 150), "cholmod-supernodal"}}) {
+    const SparseMatrix a = shifted_laplacian(mesh);
+    SparseCholesky cholesky;
+    cholesky.analyze(a);
+    cholesky.factorize(a);
+    const Eigen::MatrixX3d b = Eigen::MatrixX3d::Random(a.rows(), 3);
+    EXPECT_LT(relative_residual(a, cholesky.solve(b), b), 1e-8) << cholesky.backend();
+#ifdef POLYCUBE_WITH_CHOLMOD
+    EXPECT_STREQ(cholesky.backend(), expected);
+#endif
+    // Refactorising with new values of the same pattern.
+    const SparseMatrix twice = 2.0 * a;
+    cholesky.factorize(twice);
+    EXPECT_LT(relative_residual(twice, cholesky.solve(b), b), 1e-8);
+    EXPECT_EQ(cholesky.factorizations(), 2);
+  }
+}
+
+TEST(SparseCholesky, IndefiniteLargeSystemFallsBackToLdlt) {
+  SparseMatrix a = shifted_laplacian(test_meshes::uv_sphere(400, 150));
+  SparseCholesky cholesky;
+  cholesky.analyze(a);
+  a.coeffRef(0, 0) = -1.0;  // one negative pivot: not positive definite
+  cholesky.factorize(a);
+  EXPECT_STREQ(cholesky.backend(), "eigen-simplicial");
+  const Eigen::MatrixX3d b = Eigen::MatrixX3d::Random(a.rows(), 3);
+  EXPECT_LT(relative_residual(a, cholesky.solve(b), b), 1e-6);
+}
+
+}  // namespace
