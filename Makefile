@@ -47,10 +47,14 @@ test-python:
 	PYTHONPATH=$(BUILD) POLYCUBE_BUILD=$(BUILD) $(PYTHON) -m pytest -q tests/python
 
 test-blender: package
+	@$(MAKE) --no-print-directory data
 	$(PYTHON) tests/blender/run.py --blender $(BLENDER) --zip dist/polycube-$(VERSION).zip
 
 demo: build data
-	$(BUILD)/polycube deform $(MESHES)/fandisk.off --labels nearest --output $(BUILD)/demo/fandisk-polycube.obj --report $(BUILD)/demo/fandisk.json
+	$(BLENDER) -b --factory-startup --python addon/headless.py -- --iterations 200 --animate \
+	  --output $(BUILD)/demo/sphere.blend --preview $(BUILD)/demo/sphere.png --report $(BUILD)/demo/sphere.json
+	$(BLENDER) -b --factory-startup --python addon/headless.py -- --input $(MESHES)/fandisk.off --iterations 100 \
+	  --output $(BUILD)/demo/fandisk.blend --preview $(BUILD)/demo/fandisk.png --report $(BUILD)/demo/fandisk.json
 
 package: build
 	rm -rf $(BUILD)/package dist/polycube-$(VERSION).zip && mkdir -p $(BUILD)/package dist

@@ -2,7 +2,7 @@
 """Polycube: deform meshes into their polycube, one shape key per solver iteration.
 
 Blender 3.x reads `bl_info`; Blender 4.2+ reads `blender_manifest.toml` beside this
-file. Everything else is imported relatively so the package works under either
+file. Everything inside is imported relatively, so the package works under either
 name (`polycube` or `bl_ext.<repository>.polycube`).
 """
 
@@ -16,27 +16,18 @@ bl_info = {
     "category": "Mesh",
 }
 
-if "bpy" in locals():
-    # Reloading scripts (F3 > Reload Scripts) re-imports the submodules too.
-    import importlib
-    for _module in (
-        label_names, labels, label_cache, mesh_arrays, shape_keys, animation, report,
-        settings, preferences, object_run, solver_thread, scrub, operators, panel,
-    ):
-        importlib.reload(_module)
-
 import bpy
 
-from . import (
-    label_names, labels, label_cache, mesh_arrays, shape_keys, animation, report,
-    settings, preferences, object_run, solver_thread, scrub, operators, panel,
-)
+from . import label_cache, scrub, settings
+from .operators import OBJECT_OT_polycube_deform
+from .panel import VIEW3D_PT_polycube
+from .preferences import PolycubePreferences
 
 _classes = (
-    preferences.PolycubePreferences,
+    PolycubePreferences,
     settings.PolycubeSceneSettings,
-    operators.OBJECT_OT_polycube_deform,
-    panel.VIEW3D_PT_polycube,
+    OBJECT_OT_polycube_deform,
+    VIEW3D_PT_polycube,
 )
 
 

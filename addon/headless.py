@@ -50,7 +50,7 @@ def main(argv):
     bpy.context.view_layer.objects.active = targets[0]
     try:
         bpy.ops.object.polycube_deform(
-            iterations=args.iterations, tolerance=args.tolerance, variant=args.variant,
+            iterations=args.iterations, tolerance=args.tolerance, variant=args.variant.upper(),
             keep=args.keep.upper(), keep_every=args.keep_every, animate=args.animate,
             start_frame=args.start_frame)
     except RuntimeError as error:
@@ -61,7 +61,7 @@ def main(argv):
     reports = {obj.name: package.report.load_report(obj) for obj in targets if obj.type == 'MESH'}
     reports = {name: report for name, report in reports.items() if report is not None}
     for report in reports.values():
-        _print_report(report)
+        _print_report(package, report)
     if args.output:
         _ensure_folder(args.output)
         bpy.ops.wm.save_as_mainfile(filepath=os.path.abspath(args.output), check_existing=False)
@@ -203,11 +203,9 @@ def _apply_label_file(path, targets, package):
     package.labels.write_label_attribute(targets[0].data, values)
 
 
-def _print_report(report):
-    outcome = ("stopped" if report["stopped"] else
-               "converged" if report["converged"] else "not converged")
+def _print_report(package, report):
     seconds = report["seconds"]
-    print(f"{report['object']}: {report['iterations']} iterations, {outcome}; "
+    print(f"{report['object']}: {report['iterations']} iterations, {package.report.outcome(report)}; "
           f"{report['vertices']} vertices, {report['faces']} faces, labels from {report['label_source']}")
     print(f"  normal deviation  max {report['normal_deviation_max_deg']:.4f}°  "
           f"mean {report['normal_deviation_mean_deg']:.4f}°")

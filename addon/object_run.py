@@ -27,8 +27,7 @@ class ObjectRun:
         self.labels = read_labels(obj)
         self.seconds_read = perf_counter() - start
         self.seconds_write = 0.0
-        self.kept = []          # iterations written as shape keys, in order
-        self.figures = None     # the latest iteration's figures, for progress
+        self.kept = []  # iterations written as shape keys, in order
         self.live_preview = False
         self._started = False
 
@@ -36,16 +35,19 @@ class ObjectRun:
         """Positional and keyword arguments for polycube_native.deform."""
         args = (self.mesh.vertices, self.mesh.face_indices, self.mesh.face_sizes, self.labels.values)
         kwargs = dict(iterations=self.settings.iterations, tolerance=self.settings.tolerance,
-                      variant=self.settings.variant)
+                      variant=self.settings.variant.lower())
         return args, kwargs
 
     def add_iteration(self, iteration, positions, figures):
         """positions may be None for iterations the settings do not keep."""
-        self.figures = figures
         if positions is not None and self.settings.keeps(iteration):
             block = self._write(iteration, positions)
             if self.live_preview:
-                shape_keys.show_only(self._object(), block)
+                # Only the previous key needs switching off: the others already are.
+                if len(self.kept) > 1:
+                    blocks = block.id_data.key_blocks
+                    blocks[shape_keys.key_name(self.kept[-2], self.settings.iterations)].value = 0.0
+                block.value = 1.0
 
     def finish(self, result, seconds_solve):
         """Write the last iteration if not yet kept, animate, store the report; returns it."""

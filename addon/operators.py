@@ -12,6 +12,7 @@ import bpy
 
 from . import polycube_native, preferences
 from .object_run import ObjectRun
+from .report import outcome
 from .settings import DeformSettings
 from .solver_thread import SolverThread
 
@@ -108,6 +109,7 @@ class OBJECT_OT_polycube_deform(DeformSettings, bpy.types.Operator):
 
     def _start_next(self, context):
         self._run = self._pending.pop(0)
+        self._run_error = None
         self._run.live_preview = preferences.live_preview(context)
         args, kwargs = self._run.solver_call()
         self._thread = SolverThread(args, kwargs, self._run.settings.keeps)
@@ -115,43 +117,56 @@ class OBJECT_OT_polycube_deform(DeformSettings, bpy.types.Operator):
 
     def _pump(self, context):
         """Hand the solver's messages to the run; True once every object is done."""
-        for message in self._thread.drain():
+        # A time budget per timer event, so that writing keys never freezes the UI.
+        for message in self._thread.messages(seconds=0.1):
             kind = message[0]
-            try:
-                if kind == "iteration":
+            if kind == "iteration":
+                if self._run_error is None:
                     _, iteration, positions, figures = message
-                    self._run.add_iteration(iteration, positions, figures)
-                    self._show_progress(context, iteration, figures)
-                    continue
-                if kind == "done":
-                    _, result, seconds = message
-                    self._reports.append(self._run.finish(result, seconds))
-                else:
-                    raise message[1]
-            except (ValueError, RuntimeError) as error:
-                self._thread.request_stop()
-                self._thread.join()
-                self._fail(self._run, error)
-            self._iterations_before += self.iterations
-            if not self._pending:
-                return True
-            if self._cancelled:
-                self._problems += [f"Cancelled before '{run.object_name}' was deformed."
-                                   for run in self._pending]
-                return True
-            self._start_next(context)
-            return False
+                    try:
+                        self._run.add_iteration(iteration, positions, figures)
+                    except (ValueError, RuntimeError) as error:
+                        # Keep draining: the thread may wait for the queue to empty.
+                        self._run_error = error
+                        self._thread.request_stop()
+                    else:
+                        self._show_progress(context, iteration, figures)
+                continue
+            if kind == "error":
+                self._run_error = message[1]
+            elif self._run_error is None:
+                try:
+                    self._reports.append(self._run.finish(*message[1:]))
+                except (ValueError, RuntimeError) as error:
+                    self._run_error = error
+            if self._run_error is not None:
+                self._fail(self._run, self._run_error)
+            return self._next_object(context)
+        return False
+
+    def _next_object(self, context):
+        """Start the next object's run; True when there is none left to run."""
+        self._iterations_before += self.iterations
+        if self._cancelled:
+            self._problems += [f"Cancelled before '{run.object_name}' was deformed."
+                               for run in self._pending]
+            self._pending = []
+        if not self._pending:
+            return True
+        self._start_next(context)
         return False
 
     def _show_progress(self, context, iteration, figures):
         context.window_manager.progress_update(self._iterations_before + iteration)
+        for area in context.screen.areas:
+            if area.type == 'VIEW_3D':
+                area.tag_redraw()
+        if self._cancelled:
+            return  # the status bar says it is stopping
         context.workspace.status_text_set(
             f"Polycube: '{self._run.object_name}' iteration {iteration}/{self.iterations}, "
             f"max deviation {figures['normal_deviation_max_deg']:.3f}°, "
             f"{figures['flipped_faces']} flipped faces (Esc to stop)")
-        for area in context.screen.areas:
-            if area.type == 'VIEW_3D':
-                area.tag_redraw()
 
     def _end(self, context):
         self._cleanup(context)
@@ -194,13 +209,7 @@ def _sentence(name, error):
 
 
 def _summary(report):
-    if report["stopped"]:
-        outcome = "stopped"
-    elif report["converged"]:
-        outcome = "converged"
-    else:
-        outcome = "did not converge"
-    return (f"'{report['object']}': {outcome} after {report['iterations']} iterations, "
+    return (f"'{report['object']}': {outcome(report)} after {report['iterations']} iterations, "
             f"max normal deviation {report['normal_deviation_max_deg']:.3f}°, "
             f"{report['flipped_faces']} flipped faces, "
             f"{len(report['kept_iterations'])} shape keys.")

@@ -7,7 +7,7 @@ from .label_cache import label_summary
 from .labels import NO_LABELS
 from .operators import OBJECT_OT_polycube_deform
 from .polycube_native import LABEL_NAMES
-from .report import load_report
+from .report import load_report, outcome
 from .scrub import shown_iteration
 from .shape_keys import polycube_keys
 
@@ -52,7 +52,7 @@ def _draw_labels(layout, obj):
         layout.label(text=line)
         return
     source = "None: nearest axis" if summary.source == NO_LABELS else summary.source.capitalize()
-    layout.label(text=source, icon='FACE_MAPS')
+    layout.label(text=source, icon='FACESEL')
     grid = layout.grid_flow(row_major=True, columns=2, even_columns=True, align=True)
     for name, count in zip(LABEL_NAMES, summary.counts):
         grid.label(text=f"{name}: {count}")
@@ -61,15 +61,10 @@ def _draw_labels(layout, obj):
 
 
 def _draw_report(layout, report):
-    if report["stopped"]:
-        outcome = "stopped"
-    elif report["converged"]:
-        outcome = "converged"
-    else:
-        outcome = "not converged"
-    layout.label(text=f"Last run: {report['iterations']} iterations, {outcome}", icon='INFO')
+    layout.label(text="Last Run", icon='INFO')
     seconds = report["seconds"]
     rows = (
+        ("Iterations", f"{report['iterations']}, {outcome(report)}"),
         ("Max deviation", f"{report['normal_deviation_max_deg']:.3f}°"),
         ("Mean deviation", f"{report['normal_deviation_mean_deg']:.3f}°"),
         ("Flipped faces", str(report["flipped_faces"])),
@@ -78,12 +73,13 @@ def _draw_report(layout, report):
         ("Area error", f"{report['area_error']:.4f}"),
         ("Unlabelled faces", str(report["unlabelled_faces"])),
         ("Shape keys", str(len(report.get("kept_iterations", ())))),
-        ("Read / solve / write", f"{seconds['read']:.2f} / {seconds['deform_call']:.2f} / "
-                                 f"{seconds['write']:.2f} s"),
+        ("Read", f"{seconds['read']:.3f} s"),
+        ("Solve", f"{seconds['deform_call']:.3f} s"),
+        ("Write", f"{seconds['write']:.3f} s"),
     )
     column = layout.column(align=True)
     for name, value in rows:
-        split = column.split(factor=0.55)
+        split = column.split(factor=0.6)
         split.label(text=name)
         split.label(text=value)
 

@@ -23,6 +23,13 @@ def load_report(obj):
     return report
 
 
+def outcome(report):
+    """How the run ended, in a word or two."""
+    if report["stopped"]:
+        return "stopped"
+    return "converged" if report["converged"] else "not converged"
+
+
 def _plain(value):
     # ID properties take Python scalars, strings, lists and dicts, not numpy types.
     if isinstance(value, dict):

@@ -22,11 +22,11 @@ class DeformSettings:
     variant: EnumProperty(
         name="Solver", description="Which Laplacian the solver uses",
         items=(
-            ('fixed', "Fixed", "Cotangent Laplacian of the input mesh, factorised once: fast"),
-            ('current', "Current",
+            ('FIXED', "Fixed", "Cotangent Laplacian of the input mesh, factorised once: fast"),
+            ('CURRENT', "Current",
              "Laplacian of the current mesh, refactorised every iteration (as in the paper)"),
         ),
-        default='fixed')
+        default='FIXED')
     keep: EnumProperty(
         name="Keep", description="Which iterations become shape keys",
         items=(

@@ -11,15 +11,20 @@ from time import perf_counter
 
 from . import polycube_native
 
+# Kept iterations in flight at once. The solver can be far faster than writing
+# shape keys; past this many it waits, so memory stays bounded and Esc acts soon.
+_IN_FLIGHT = 4
+
 
 class SolverThread(threading.Thread):
-    """Runs polycube_native.deform; messages on `messages`:
-    ("iteration", k, positions or None, figures), then ("done", result, seconds)
+    """Runs polycube_native.deform; messages, in order, from `messages()`:
+    ("iteration", k, positions or None, figures) ... then ("done", result, seconds)
     or ("error", exception)."""
 
     def __init__(self, args, kwargs, keeps):
         super().__init__(name="polycube solver", daemon=True)
-        self.messages = queue.Queue()
+        self._queue = queue.Queue()
+        self._slots = threading.Semaphore(_IN_FLIGHT)
         self._args, self._kwargs, self._keeps = args, kwargs, keeps
         self._stop_requested = threading.Event()
 
@@ -29,23 +34,29 @@ class SolverThread(threading.Thread):
 
     def run(self):
         def on_iteration(iteration, positions, figures):
-            # Only kept iterations carry positions: the queue may hold many at once.
+            # Only kept iterations carry positions, and only a few at a time.
             kept = positions if self._keeps(iteration) else None
-            self.messages.put(("iteration", iteration, kept, figures))
+            if kept is not None:
+                self._slots.acquire()
+            self._queue.put(("iteration", iteration, kept, figures))
             return not self._stop_requested.is_set()
 
         start = perf_counter()
         try:
             result = polycube_native.deform(*self._args, callback=on_iteration, **self._kwargs)
         except Exception as error:  # handed to the main thread, which reports it
-            self.messages.put(("error", error))
+            self._queue.put(("error", error))
         else:
-            self.messages.put(("done", result, perf_counter() - start))
+            self._queue.put(("done", result, perf_counter() - start))
 
-    def drain(self):
-        """The messages waiting now, without blocking."""
-        while True:
+    def messages(self, seconds):
+        """The messages waiting now, for at most this long, without blocking."""
+        end = perf_counter() + seconds
+        while perf_counter() < end:
             try:
-                yield self.messages.get_nowait()
+                message = self._queue.get_nowait()
             except queue.Empty:
                 return
+            if message[0] == "iteration" and message[2] is not None:
+                self._slots.release()
+            yield message

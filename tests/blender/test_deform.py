@@ -9,7 +9,7 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from harness import (  # noqa: E402
     arrays, deform, enable_addon, key_coordinates, key_figures, key_names, labelled_sphere,
-    nearest_axis_labels, report, run_tests, select_only, uv_sphere, vertices)
+    nearest_axis_labels, report, run_tests, select_only, vertices)
 
 polycube = enable_addon()
 TOLERANCE = 0.5
@@ -118,7 +118,7 @@ def test_key_names_widen_for_a_thousand_iterations_or_more():
 def test_current_variant():
     sphere = labelled_sphere()
     labels = nearest_axis_labels(sphere)
-    deform(sphere, iterations=30, variant='current', tolerance=1e-4)
+    deform(sphere, iterations=30, variant='CURRENT', tolerance=1e-4)
     result = report(sphere)
     assert result["variant"] == "current" and result["iterations"] == 30
     start = polycube.polycube_native.figures(arrays(sphere).vertices, vertices(sphere),

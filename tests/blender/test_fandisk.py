@@ -3,12 +3,11 @@
 import os
 import sys
 
-import bpy
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from harness import (  # noqa: E402
-    MESHES, arrays, deform, enable_addon, key_coordinates, key_figures, key_names,
+    MESHES, deform, enable_addon, key_coordinates, key_figures, key_names,
     nearest_axis_labels, off_object, report, run_tests, vertices)
 
 polycube = enable_addon()

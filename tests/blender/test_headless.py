@@ -61,6 +61,34 @@ def _write_obj(path, mesh):
             start += size
 
 
+def _write_ply(path, mesh):
+    with open(path, "w") as file:
+        file.write(f"ply\nformat ascii 1.0\nelement vertex {len(mesh.vertices)}\n"
+                   "property float x\nproperty float y\nproperty float z\n"
+                   f"element face {len(mesh.face_sizes)}\nproperty list uchar int vertex_indices\n"
+                   "end_header\n")
+        np.savetxt(file, mesh.vertices, fmt="%.9g")
+        start = 0
+        for size in mesh.face_sizes:
+            file.write(f"{size} {' '.join(map(str, mesh.face_indices[start:start + size]))}\n")
+            start += size
+
+
+def _write_stl(path, mesh):
+    with open(path, "w") as file:
+        file.write("solid ball\n")
+        start = 0
+        for size in mesh.face_sizes:
+            corners = mesh.face_indices[start:start + size]
+            start += size
+            for j in range(1, size - 1):  # STL holds triangles only
+                file.write("facet normal 0 0 0\nouter loop\n")
+                for v in (corners[0], corners[j], corners[j + 1]):
+                    file.write("vertex %.9g %.9g %.9g\n" % tuple(mesh.vertices[v]))
+                file.write("endloop\nendfacet\n")
+        file.write("endsolid ball\n")
+
+
 def _non_white_columns(path):
     image = bpy.data.images.load(path)
     try:
@@ -124,6 +152,21 @@ def test_obj_input_with_a_label_file_keeps_file_coordinates():
     ball.data.vertices.foreach_get("co", coordinates)
     # Imported without axis conversion: labels are about the file's own axes.
     assert np.allclose(coordinates.reshape(-1, 3), mesh.vertices, atol=1e-6)
+
+
+def test_ply_and_stl_inputs():
+    mesh = arrays(uv_sphere())
+    triangles = int((mesh.face_sizes - 2).sum())
+    for extension, write, faces in (("ply", _write_ply, len(mesh.face_sizes)), ("stl", _write_stl, triangles)):
+        path, js = os.path.join(TMP, f"ball.{extension}"), os.path.join(TMP, f"{extension}.json")
+        write(path, mesh)
+        done = _headless("--input", path, "--iterations", "200", "--report", js)
+        assert done.returncode == 0, done.stderr
+        with open(js) as file:
+            (figures,) = json.load(file).values()
+        # The same surface, its vertices shared between faces (STL repeats them per facet).
+        assert (figures["vertices"], figures["faces"]) == (len(mesh.vertices), faces), (extension, figures)
+        assert figures["converged"] is True and figures["flipped_faces"] == 0, (extension, figures)
 
 
 def test_blend_input_deforms_only_the_named_objects():
