@@ -1,5 +1,5 @@
 // `polycube deform IN [--labels nearest|auto|FILE] [--flip-labels] [--iterations N] [--tolerance DEG]
-//  [--variant fixed|current] [--output OUT] [--report REPORT.json]`
+//  [--variant robust|fixed|current] [--output OUT] [--report REPORT.json]`
 #include <unistd.h>
 
 #include <cstdio>
@@ -20,16 +20,19 @@ namespace polycube {
 
 const char* const kDeformUsage =
     "polycube deform IN.(off|obj|ply) [--labels nearest|auto|FILE] [--flip-labels] [--iterations N] [--tolerance DEG]\n"
-    "                [--variant fixed|current] [--output OUT.(obj|off|ply)] [--report REPORT.json]\n"
+    "                [--variant robust|fixed|current] [--output OUT.(obj|off|ply)] [--report REPORT.json]\n"
     "  Deforms the mesh into its polycube and prints the quality figures.\n"
     "  --labels      nearest (default): every face takes the axis nearest its normal;\n"
-    "                auto: the automatic labeller (see `polycube label`; --compactness W, default 1);\n"
+    "                auto: the automatic labeller (see `polycube label`; --compactness W, default 0.3);\n"
     "                FILE: one label per face, 0..5 = +X,-X,+Y,-Y,+Z,-Z, -1 = nearest\n"
     "  --flip-labels every label turned to its opposite: labels made for the other winding\n"
     "  --iterations  iteration limit (default 100)\n"
     "  --tolerance   stop when every face is within DEG degrees of its axis (default 0.5; 0 = never)\n"
-    "  --variant     fixed (default): Laplacian of the input, factorised once;\n"
-    "                current: rebuilt from the current mesh every iteration, as in the paper\n"
+    "  --variant     robust (default): never folds a face; fits each face's input shape first, then\n"
+    "                the paper's step; relabels faces that cannot reach their axis without folding\n"
+    "                (listed as relabelled_faces); faces still above the tolerance: unconverged_faces\n"
+    "                fixed: the paper's method, Laplacian of the input, factorised once;\n"
+    "                current: the paper's method, Laplacian rebuilt every iteration, as in the paper\n"
     "  --output      the deformed mesh (same vertices and faces as the input)\n"
     "  --report      the figures and timings as JSON\n";
 
@@ -39,7 +42,7 @@ int deform_command(const std::vector<std::string>& args) {
   DeformOptions options;
   options.iterations = arguments.get_int("iterations", options.iterations, 0);
   options.tolerance_deg = arguments.get_double("tolerance", options.tolerance_deg, 0.0);
-  options.variant = parse_variant(arguments.get("variant", "fixed"));
+  options.variant = parse_variant(arguments.get("variant", variant_name(options.variant)));
 
   const PolygonMesh mesh = read_mesh(arguments.input());
   const std::string labels_source = arguments.get("labels", "nearest");

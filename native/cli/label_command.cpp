@@ -3,6 +3,7 @@
 
 #include "cli/arguments.h"
 #include "cli/commands.h"
+#include "cli/label_source.h"
 #include "core/auto_labels.h"
 #include "core/validate_labels.h"
 #include "io/labels_io.h"
@@ -15,7 +16,7 @@ const char* const kLabelUsage =
     "  Labels every face automatically (graph cut over the six axes, then local repair of\n"
     "  what breaks the polycube conditions), writes one label per face and prints a summary.\n"
     "  --output       the labels file (0..5 = +X,-X,+Y,-Y,+Z,-Z), readable by --labels FILE\n"
-    "  --compactness  weight of chart boundaries against fidelity to the normals (default 1):\n"
+    "  --compactness  weight of chart boundaries against fidelity to the normals (default 0.3):\n"
     "                 larger gives fewer, rounder charts\n";
 
 int label_command(const std::vector<std::string>& args) {
@@ -25,6 +26,7 @@ int label_command(const std::vector<std::string>& args) {
   options.compactness = arguments.get_double("compactness", options.compactness, 0.0);
   const PolygonMesh mesh = read_mesh(arguments.input());
   const std::vector<int> labels = auto_labels(mesh, options);
+  warn_about_orientation(mesh, labels, false);  // labels follow the winding: an inward mesh gets inward labels
   write_labels(arguments.get("output", ""), labels);
   const LabelValidation v = validate_labels(mesh, labels);
   std::printf("%d faces, %d charts, %d chart boundaries, %d corners, %zu violations%s\n", mesh.faces.count(),

@@ -21,7 +21,7 @@ const char* const kValidateUsage =
     "  violation with its faces and checks the orientation. Exit status 0 when valid, 4 when not.\n"
     "  --labels       FILE: one label per face (0..5 = +X,-X,+Y,-Y,+Z,-Z, -1 = nearest);\n"
     "                 auto: the automatic labeller; nearest: the axis nearest each normal\n"
-    "  --compactness  weight of chart boundaries for --labels auto (default 1)\n"
+    "  --compactness  weight of chart boundaries for --labels auto (default 0.3)\n"
     "  --flip-labels  turn every label to its opposite (labels made for the other winding)\n"
     "  --json         print the result as JSON (violations with all their faces)\n";
 

@@ -16,11 +16,13 @@ namespace {
 
 // Fidelity of a unit normal to a label axis, 0 when they agree, close to 1
 // from about 50 degrees on: the Gaussian falloff of PolyCut (Livesu et al.
-// 2013), so a face has no preference between the labels it clearly is not.
+// 2013), so a face has little preference between the labels it clearly is
+// not. Beyond 90 degrees it rises again: a face whose label points away from
+// it must fold, so the repair moves (which compare energies) avoid that.
 double fidelity_cost(const Eigen::Vector3d& normal, int label) {
-  constexpr double kSigma = 0.2;
-  const double x = (normal.dot(label_axis(label)) - 1.0) / kSigma;
-  return 1.0 - std::exp(-0.5 * x * x);
+  constexpr double kSigma = 0.2, kAgainst = 2.0;
+  const double dot = normal.dot(label_axis(label)), x = (dot - 1.0) / kSigma;
+  return 1.0 - std::exp(-0.5 * x * x) + kAgainst * std::max(0.0, -dot);
 }
 
 // Chart boundaries along creases are what a user expects (fandisk's sharp
@@ -91,7 +93,13 @@ std::vector<int> auto_labels(const PolygonMesh& mesh, const AutoLabelOptions& op
     labels[f] = best;  // the nearest axis (lowest label on ties)
   }
   labels = alpha_expansion(energy, std::move(labels));
-  if (options.repair) labels = repair_labels(adjacency, energy, std::move(labels), options.repair_rounds);
+  if (options.repair) {
+    std::vector<double> areas(mesh.faces.count());
+    for (int f = 0; f < mesh.faces.count(); ++f) areas[f] = 0.5 * newell_normal(mesh.vertices, mesh.faces, f).norm();
+    labels = merge_tiny_charts(adjacency, energy, areas, std::move(labels), options.repair_moves);
+    labels = repair_labels(adjacency, energy, std::move(labels), options.repair_moves);
+    labels = merge_tiny_charts(adjacency, energy, areas, std::move(labels), options.repair_moves);
+  }
   return labels;
 }
 

@@ -9,10 +9,12 @@
 //    rarely touch; edges across sharp creases cost less, so chart boundaries
 //    follow the model's features; h is a length proportional to the model's
 //    size, so the result does not depend on the mesh resolution.
-// 3. Repair what still breaks the polycube conditions (validate_labels) with
-//    local moves: relabel a tiny or ill-connected chart, a band of faces along
-//    an opposite boundary, or the faces around a corner of four or more charts;
-//    a move is kept only if it lowers the number of violations.
+// 3. Merge tiny charts into a neighbour (repair_labels.h), then repair what
+//    still breaks the polycube conditions (validate_labels) with local moves:
+//    relabel an ill-connected chart, a band of faces along an opposite
+//    boundary, or the faces around a corner of four or more charts; a move is
+//    kept only if it lowers the number of violations. Tiny charts the repair
+//    left are merged last.
 // Deterministic: the same mesh and options give the same labels.
 #pragma once
 
@@ -25,9 +27,9 @@ namespace polycube {
 struct AutoLabelOptions {
   // Weight of chart boundary length against fidelity to the normals: larger
   // gives fewer, rounder charts and ignores smaller features.
-  double compactness = 1.0;
+  double compactness = 0.3;
   bool repair = true;        // step 3
-  int repair_rounds = 30;    // each round tries one move per remaining violation
+  int repair_moves = 200;    // at most this many repair moves (each fixes at least one violation)
 };
 
 // One label 0..5 per face. Throws Error on input check_input rejects.

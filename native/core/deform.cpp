@@ -1,10 +1,9 @@
 #include "core/deform.h"
 
+#include <Eigen/Geometry>
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
-#include <cstdlib>
 
 #include "core/axis.h"
 #include "core/check_input.h"
@@ -12,6 +11,8 @@
 #include "core/cotangent_weights.h"
 #include "core/face_states.h"
 #include "core/fitted_rotations.h"
+#include "core/fold_free_step.h"
+#include "core/label_repair.h"
 #include "core/laplacian.h"
 #include "core/nearest_labels.h"
 #include "core/poisson_rhs.h"
@@ -27,11 +28,20 @@ namespace {
 // below L's smallest non-zero eigenvalue on any mesh we can hold in memory.
 constexpr double kRelativeShift = 1e-8;
 
-// The robust variant's step control and phase switch (see deform.h).
+// The robust variant (deform.h). Steps of a vertex are halved at most this
+// often before it is held (fold_free_step.h).
 constexpr int kMaxHalvings = 6;
-constexpr int kMaxFreezeRounds = 20;
+// The fitting phase ends when no vertex moves more than this fraction of the
+// bounding box diagonal, or after this many iterations: the fitted shape is
+// as-rigid-as-possible, not exact, so it is only a starting point.
 constexpr int kMaxFitIterations = 30;
 constexpr double kFitStepTolerance = 1e-3;
+// Stalled: the largest deviation has not dropped by kProgress (relative) for
+// kStallIterations; then faces above kRepairDeviationDeg are candidates for
+// label repair (label_repair.h).
+constexpr int kStallIterations = 10;
+constexpr double kProgress = 0.01;
+constexpr double kRepairDeviationDeg = 45.0;
 
 using Factorization = Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>>;
 
@@ -112,7 +122,7 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
   const int n = static_cast<int>(mesh.vertices.rows());
   const Components parts = components(n, triangles);
   const Eigen::MatrixX3d centroids = component_centroids(mesh.vertices, parts);
-  const QualityMeasure quality(mesh.vertices, triangles, triangle_labels);
+  QualityMeasure quality(mesh.vertices, triangles, triangle_labels);
   Vertices x = mesh.vertices;
   result.figures = quality.measure(x);
   result.converged = result.figures.normal_deviation_max_deg < options.tolerance_deg;
@@ -123,7 +133,7 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
   factorization.analyzePattern(laplacian.matrix());
   Eigen::MatrixX3d solution(n, 3);
   // Solves L y = rhs and puts every component's centroid back where it was.
-  auto solve = [&](const Eigen::MatrixX3d& rhs, int iteration) {
+  auto solve = [&](const Factorization& factorization, const Eigen::MatrixX3d& rhs, int iteration) {
     solution = factorization.solve(rhs);
     if (!solution.allFinite())
       throw Error("the linear solve gave non-finite positions at iteration " + std::to_string(iteration));
@@ -152,83 +162,102 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
   if (options.variant == Variant::kRobust) {
     // Positive weights: with negative cotangents L is indefinite and the
     // global step can fold triangles on its own (bone: 16% of the input's
-    // corners are obtuse). Clamping at zero keeps L positive semidefinite.
-    CotangentWeights weights = cotangent_weights(mesh.vertices, triangles).cwiseMax(0.0);
-    double shift = laplacian.assemble(weights, kRelativeShift);
+    // corners are obtuse, fandisk 7%). Clamping at zero keeps L positive
+    // semidefinite, and every fixed point is still an exact polycube.
+    const CotangentWeights weights = cotangent_weights(mesh.vertices, triangles).cwiseMax(0.0);
+    const double shift = laplacian.assemble(weights, kRelativeShift);
     result.seconds.assemble += phase.lap();
     if (!result.converged) factorize(factorization, laplacian.matrix());
     result.seconds.factorize += phase.lap();
+    // The Laplacian of the current mesh, for the steps the input's cannot take.
+    Laplacian current_laplacian(n, triangles);
+    Factorization current_factorization;
+    bool current_analyzed = false;
 
-    const FaceStateMeasure state_measure(mesh.vertices, triangles, triangle_labels);
+    FaceStateMeasure state_measure(mesh.vertices, triangles, triangle_labels);
     FaceStates state = state_measure.measure(x);
+    const std::vector<std::vector<int>> adjacency = face_adjacency(triangulation, mesh.faces.count());
+    std::vector<char> relabelled(mesh.faces.count(), 0);
     const double diagonal = (mesh.vertices.colwise().maxCoeff() - mesh.vertices.colwise().minCoeff()).norm();
+
+    // Fold-free steps (fold_free_step.h), put back on the components'
+    // centroids, which per-vertex steps move a little.
+    auto controlled_step = [&](const Vertices& target) {
+      FoldFreeStep step = fold_free_step(x, state, target, triangles, state_measure, kMaxHalvings);
+      const Eigen::MatrixX3d drift = component_centroids(step.positions, parts) - centroids;
+      for (int v = 0; v < n; ++v)
+        if (parts.of_vertex[v] >= 0) step.positions.row(v) -= drift.row(parts.of_vertex[v]);
+      return step;
+    };
+
     bool exact = false;
-    int fit_iterations = 0;
+    int fit_iterations = 0, since_progress = 0;
+    double best_max = state.max_deviation_deg;
     for (int iteration = 1; iteration <= options.iterations && !result.converged; ++iteration) {
-      Eigen::MatrixX3d rhs;
+      FoldFreeStep step;
       if (!exact) {
+        // Phase 1: fit every triangle's input shape, turned onto its axis
+        // (fitted_rotations.h), with the input's Laplacian factorised once.
         const Rotations rotations = fitted_rotations(mesh.vertices, x, triangles, weights, triangle_labels);
-        rhs = rotated_edges_rhs(mesh.vertices, triangles, weights, rotations) + shift * x;
+        const Eigen::MatrixX3d rhs = rotated_edges_rhs(mesh.vertices, triangles, weights, rotations) + shift * x;
         ++fit_iterations;
+        result.seconds.rotations += phase.lap();
+        step = controlled_step(solve(factorization, rhs, iteration));
+        result.seconds.solve += phase.lap();
       } else {
-        if (std::getenv("PCCUR")) {
-          weights = cotangent_weights(x, triangles).cwiseMax(0.0);
-          shift = laplacian.assemble(weights, kRelativeShift);
-          factorize(factorization, laplacian.matrix());
-        }
-        rhs = poisson_rhs(x, triangles, weights, triangle_labels) + shift * x;
-      }
-      result.seconds.rotations += phase.lap();
-      const Vertices target = solve(rhs, iteration);
-      result.seconds.solve += phase.lap();
-      // Step control: move every vertex the whole way unless that folds a
-      // triangle that was not folded; then shorten the steps of that
-      // triangle's corners only, so a few faces that want to fold do not hold
-      // the rest of the mesh back.
-      std::vector<double> alpha(n, 1.0);
-      Vertices candidate(n, 3);
-      FaceStates candidate_state;
-      int rounds = 0, limited = 0;
-      for (;; ++rounds) {
-        for (int v = 0; v < n; ++v) candidate.row(v) = x.row(v) + alpha[v] * (target.row(v) - x.row(v));
-        candidate_state = state_measure.measure(candidate);
-        bool folds = false;
-        for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
-          if (!candidate_state.flipped[t] || state.flipped[t]) continue;
-          folds = true;
-          for (int k = 0; k < 3; ++k) {
-            double& a = alpha[triangles(t, k)];
-            a = rounds < kMaxHalvings ? 0.5 * a : 0.0;
-          }
-        }
-        if (!folds) break;
-        // A triangle whose corners all stand still can still change class
-        // when the global scale s moves the collapse threshold; give up on
-        // the step rather than loop.
-        if (rounds == kMaxHalvings + kMaxFreezeRounds) {
-          std::fill(alpha.begin(), alpha.end(), 0.0);
-          candidate = x;
-          candidate_state = state;
-          break;
+        // Phase 2: the paper's step, exact at its fixed points, with the
+        // input's Laplacian (fast: one back-substitution). Where that step
+        // would fold faces, take the paper's step with the Laplacian of the
+        // current mesh instead: with the input's, the paper's iteration
+        // reaches collapsed faces by turning them over first (B0: 4 faces
+        // folded at iteration 4 of `fixed`); the current metric's does not.
+        Eigen::MatrixX3d rhs = poisson_rhs(x, triangles, weights, triangle_labels) + shift * x;
+        result.seconds.rotations += phase.lap();
+        step = controlled_step(solve(factorization, rhs, iteration));
+        result.seconds.solve += phase.lap();
+        if (step.limited > 0) {
+          const CotangentWeights current = cotangent_weights(x, triangles).cwiseMax(0.0);
+          const double current_shift = current_laplacian.assemble(current, kRelativeShift);
+          if (!current_analyzed) current_factorization.analyzePattern(current_laplacian.matrix());
+          current_analyzed = true;
+          result.seconds.assemble += phase.lap();
+          factorize(current_factorization, current_laplacian.matrix());
+          result.seconds.factorize += phase.lap();
+          rhs = poisson_rhs(x, triangles, current, triangle_labels) + current_shift * x;
+          result.seconds.rotations += phase.lap();
+          step = controlled_step(solve(current_factorization, rhs, iteration));
+          result.seconds.solve += phase.lap();
         }
       }
-      for (int v = 0; v < n; ++v) limited += alpha[v] < 1.0;
-      {
-        const Eigen::MatrixX3d drift = component_centroids(candidate, parts) - centroids;
-        for (int v = 0; v < n; ++v)
-          if (parts.of_vertex[v] >= 0) candidate.row(v) -= drift.row(parts.of_vertex[v]);
+      const double step_size = (step.positions - x).rowwise().norm().maxCoeff() / diagonal;
+      x = std::move(step.positions);
+      state = std::move(step.states);
+
+      if (!exact && (step_size < kFitStepTolerance || fit_iterations >= kMaxFitIterations)) exact = true;
+      // Stalled: the largest deviation has not improved for a while. Faces
+      // held back by the step control are the usual reason: repair their
+      // labels where a neighbour's label fits them (label_repair.h).
+      if (state.max_deviation_deg < best_max * (1.0 - kProgress)) {
+        best_max = state.max_deviation_deg;
+        since_progress = 0;
+      } else if (exact && ++since_progress >= kStallIterations) {
+        since_progress = 0;
+        const std::vector<int> changed = repair_stalled_labels(x, triangulation, adjacency, state,
+                                                               kRepairDeviationDeg, result.labels);
+        if (!changed.empty()) {
+          for (int f : changed) relabelled[f] = 1;
+          for (size_t t = 0; t < triangle_labels.size(); ++t)
+            triangle_labels[t] = result.labels[triangulation.face_of_triangle[t]];
+          quality = QualityMeasure(mesh.vertices, triangles, triangle_labels);
+          state_measure.set_labels(triangle_labels);
+          state = state_measure.measure(x);
+          best_max = state.max_deviation_deg;
+        }
       }
-      const double step = (candidate - x).rowwise().norm().maxCoeff() / diagonal;
-      const bool accepted = limited < n;
-      x = std::move(candidate);
-      state = std::move(candidate_state);
-      const double alpha_min = *std::min_element(alpha.begin(), alpha.end());
-      if (std::getenv("PCDEBUG"))
-        std::fprintf(stderr, "it %d exact=%d alpha_min=%g limited=%d step=%g max=%g flipped=%d\n", iteration, exact,
-                     alpha_min, limited, step, state.max_deviation_deg, state.flipped_count);
-      if (!exact && (step < kFitStepTolerance || fit_iterations >= kMaxFitIterations || !accepted)) exact = true;
       if (!finish_iteration(iteration)) break;
     }
+    for (int f = 0; f < mesh.faces.count(); ++f)
+      if (relabelled[f]) result.relabelled_faces.push_back(f);
   } else {
     CotangentWeights weights;
     double shift = 0.0;
@@ -246,7 +275,7 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
       if (options.variant == Variant::kCurrent) rebuild(x);
       const Eigen::MatrixX3d rhs = poisson_rhs(x, triangles, weights, triangle_labels) + shift * x;
       result.seconds.rotations += phase.lap();
-      x = solve(rhs, iteration);
+      x = solve(factorization, rhs, iteration);
       result.seconds.solve += phase.lap();
       if (!finish_iteration(iteration)) break;
     }

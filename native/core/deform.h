@@ -16,9 +16,43 @@ namespace polycube {
 // whatever the weights, so both reach the same shapes; they differ in cost and
 // robustness.
 //
-// `robust` (the default) is ours, not the paper's; see robust_step.h for why
-// and what it does. `fixed` and `current` are the plain method, kept for
-// comparison: their fixed points are exactly the polycubes of the labels.
+// `robust` (the default) is ours, not the paper's (issue 6). Why the plain
+// method folds and stalls on real models, measured (200 iterations):
+// - its step jumps: `fixed` turns faces over on its way even where it ends
+//   exact (B0: 4 faces at iteration 4; fandisk: 43, 9 stay; elephant: 428);
+//   `current` diverges once triangles degenerate (sphere: from iteration 40,
+//   max 150 degrees; elephant: mean 47 degrees);
+// - negative cotangents make L indefinite (16% of bone's corners are obtuse,
+//   7% of fandisk's, 0% of the sphere's);
+// - labels that ask for the impossible: faces pointing more than 90 degrees
+//   away from their axis at the start (12 in bone's published labeling),
+//   staircase chart boundaries that need faces collapsed, one-face charts
+//   (136 in the elephant's nearest-axis labels), and quads bent across a
+//   polycube edge, whose two triangles cannot share one label.
+// What `robust` does, every part kept because the figures justified it:
+// 1. positive weights (cotangents clamped at 0) for a semidefinite L;
+// 2. a fitting phase: per-triangle rotations that turn the *input* normal onto
+//    the axis with the best in-plane twist (fitted_rotations.h), global step
+//    with the input Laplacian factorised once: an as-rigid-as-possible shape
+//    close to the polycube, which cuts edge and area error;
+// 3. then the paper's step, exact at its fixed points, with the input
+//    Laplacian; where it would fold a face, the paper's step with the current
+//    mesh's Laplacian instead, which collapses faces without turning them;
+// 4. every step fold-free (fold_free_step.h): faces never turn over;
+// 5. when progress stalls, faces held back near 90 degrees that fit a
+//    neighbour's label better are relabelled (label_repair.h, listed in
+//    DeformResult::relabelled_faces).
+// What is left (see tests/native/test_robust_deform.cpp): faces that slowly
+// collapse keep their neighbours some degrees above the tolerance after 200
+// iterations (fandisk 7, eight 6, mesh_with_border 3.4 inside, the quad torus
+// 3.3): nearly every iteration the input-Laplacian step would fold a few
+// (mostly collapsed) triangles, so the slower current-Laplacian step is
+// taken. Faces stalled at up to 90 degrees with no better neighbouring label
+// stay (bone 47; elephant 90, whose nearest-axis labels need a real
+// labeller); so do polygons bent across a polycube edge, whose triangles
+// cannot share one label without one of them turning over (a trial that let
+// them turn over ended with folds on double-torus-example, so it was
+// dropped). All of them are listed in DeformResult::unconverged_faces.
 enum class Variant {
   kFixed,    // built from the input once, factorised once: one back-substitution per iteration
   kCurrent,  // rebuilt from the current mesh every iteration, as in the paper
@@ -52,6 +86,10 @@ struct DeformResult {
   // is listed when any of its triangles is; collapsed triangles are not.
   std::vector<int> unconverged_faces;
   std::vector<int> flipped_faces;
+  // Polygon faces whose label the `robust` variant changed because they could
+  // not reach its axis without folding (label_repair.h); `labels` holds the
+  // new ones and the figures are measured against them.
+  std::vector<int> relabelled_faces;
   PhaseSeconds seconds;
 };
 

@@ -56,7 +56,8 @@ LabelValidation validate_labels(const PolygonMesh& mesh, const std::vector<int>&
 // built (the automatic labeller validates many candidate labelings).
 LabelValidation validate_labels(const MeshAdjacency& adjacency, const Charts& charts, int vertex_count);
 
-// Validates, and fills -1 labels with the nearest axis: the labels deform() uses.
+// The labels with every -1 replaced by the nearest axis of its face normal:
+// the labels deform() uses. unlabelled, when given, gets how many there were.
 std::vector<int> filled_labels(const PolygonMesh& mesh, const std::vector<int>& labels, int* unlabelled = nullptr);
 
 }  // namespace polycube

@@ -1,6 +1,20 @@
 #include "io/deform_report.h"
 
+#include <algorithm>
+
 namespace polycube {
+namespace {
+
+// Face lists can be as long as the mesh on a hopeless labeling; the counts are
+// exact, the lists keep the first kMaxListedFaces ids (ascending).
+constexpr size_t kMaxListedFaces = 1000;
+
+void add_faces(JsonWriter& json, const std::string& key, const std::vector<int>& faces) {
+  json.add(key + "_count", static_cast<long>(faces.size()));
+  json.add(key, std::vector<int>(faces.begin(), faces.begin() + std::min(faces.size(), kMaxListedFaces)));
+}
+
+}  // namespace
 
 void add_figures(JsonWriter& json, const Figures& f) {
   json.add("normal_deviation_max_deg", f.normal_deviation_max_deg)
@@ -23,6 +37,9 @@ JsonWriter deform_report(const PolygonMesh& mesh, const DeformResult& r, const D
       .add("stopped", r.stopped)
       .add("unlabelled_faces", r.unlabelled_faces);
   add_figures(json, r.figures);
+  add_faces(json, "unconverged_faces", r.unconverged_faces);
+  add_faces(json, "flipped_face_ids", r.flipped_faces);
+  add_faces(json, "relabelled_faces", r.relabelled_faces);
   json.begin_object("seconds")
       .add("total", r.seconds.total)
       .add("assemble", r.seconds.assemble)

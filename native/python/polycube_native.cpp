@@ -8,14 +8,18 @@
 
 #include <cstring>
 
+#include "core/auto_labels.h"
 #include "core/axis.h"
 #include "core/check_input.h"
 #include "core/deform.h"
 #include "core/nearest_labels.h"
+#include "core/orientation.h"
 #include "core/quality.h"
 #include "core/refine.h"
 #include "core/triangulate.h"
+#include "core/validate_labels.h"
 #include "io/deform_report.h"
+#include "io/labels_report.h"
 #include "io/read_mesh.h"
 
 namespace py = pybind11;
@@ -171,6 +175,49 @@ py::tuple read_mesh_py(const std::string& path) {
   return py::make_tuple(to_numpy(mesh.vertices), to_int_array(mesh.faces.indices), to_int_array(sizes));
 }
 
+// Labels (issue 4): the automatic labeller, the validator and the orientation
+// check; dicts through the same JSON writer as `polycube validate --json`.
+py::array_t<int> auto_labels_py(const DoubleArray& vertices, const IntArray& face_indices, const IntArray& face_sizes,
+                                double compactness, bool repair) {
+  const PolygonMesh mesh = to_mesh(vertices, face_indices, face_sizes);
+  AutoLabelOptions options;
+  options.compactness = compactness;
+  options.repair = repair;
+  std::vector<int> labels;
+  {
+    py::gil_scoped_release release;
+    labels = auto_labels(mesh, options);
+  }
+  return to_int_array(labels);
+}
+
+py::dict validate_labels_py(const DoubleArray& vertices, const IntArray& face_indices, const IntArray& face_sizes,
+                            const IntArray& labels) {
+  const PolygonMesh mesh = to_mesh(vertices, face_indices, face_sizes);
+  const std::vector<int> face_labels = to_ints(labels, "labels");
+  LabelValidation validation;
+  {
+    py::gil_scoped_release release;
+    validation = validate_labels(mesh, face_labels);
+  }
+  JsonWriter json;
+  add_validation(json, validation);
+  return json_loads(json.str(0));
+}
+
+py::dict orientation_py(const DoubleArray& vertices, const IntArray& face_indices, const IntArray& face_sizes,
+                        const std::optional<IntArray>& labels) {
+  const PolygonMesh mesh = to_mesh(vertices, face_indices, face_sizes);
+  std::vector<int> face_labels;
+  if (labels) face_labels = to_ints(*labels, "labels");
+  const Orientation o = orientation(mesh, labels ? &face_labels : nullptr);
+  JsonWriter json;
+  add_orientation(json, o, labels.has_value());
+  return json_loads(json.str(0));
+}
+
+py::array_t<int> flip_labels_py(const IntArray& labels) { return to_int_array(flip_labels(to_ints(labels, "labels"))); }
+
 }  // namespace
 
 PYBIND11_MODULE(polycube_native, m) {
@@ -199,4 +246,28 @@ Returns {"vertices", "face_indices", "face_sizes", "labels" (None without input 
 every child face keeps its parent's label.)");
   m.def("read_mesh", &read_mesh_py, py::arg("path"),
         "Read an .off, .obj or .ply file: (vertices (n, 3), face_indices, face_sizes). Raises ValueError.");
+
+  m.def("auto_labels", &auto_labels_py, py::arg("vertices"), py::arg("face_indices"), py::arg("face_sizes"),
+        py::kw_only(), py::arg("compactness") = AutoLabelOptions().compactness, py::arg("repair") = true,
+        R"(Label every face automatically: (F,) int32, 0..5 = +X, -X, +Y, -Y, +Z, -Z.
+
+Graph cut (alpha-expansion) of fidelity to the normals plus compactness * chart boundary length,
+then local repair of what breaks the polycube conditions. Larger compactness: fewer, rounder
+charts. Deterministic. Raises ValueError on bad input.)");
+  m.def("validate_labels", &validate_labels_py, py::arg("vertices"), py::arg("face_indices"),
+        py::arg("face_sizes"), py::arg("labels"),
+        R"(Check labels against the polycube conditions (DESIGN.md section 3).
+
+Returns {"valid", "charts", "boundaries", "corners", "unlabelled_faces", "violations"}; each
+violation is {"kind", "chart", "label", "label_name", "others", "vertex", "faces"} with kind
+"too_few_neighbours", "opposite_neighbours" or "corner_too_many_charts". -1 labels are judged
+by their nearest axis. Raises ValueError on bad input.)");
+  m.def("orientation", &orientation_py, py::arg("vertices"), py::arg("face_indices"), py::arg("face_sizes"),
+        py::arg("labels") = py::none(),
+        R"(Check the winding: {"orientable", "consistent", "inconsistent_edges", "components",
+"closed_components", "inward_components", "inward"}, and with labels "area_against_labels"
+(share of the area facing away from its label) and "labels_opposite" (most of it does: labels
+made for the other winding; flip_labels fixes them).)");
+  m.def("flip_labels", &flip_labels_py, py::arg("labels"),
+        "Every label turned to its opposite axis (+X <-> -X, ...), -1 kept.");
 }

@@ -1,0 +1,83 @@
+#include "core/label_repair.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <map>
+
+#include "core/axis.h"
+
+namespace polycube {
+
+std::vector<std::vector<int>> face_adjacency(const Triangulation& triangulation, int face_count) {
+  const Triangles& t = triangulation.triangles;
+  std::map<std::pair<int, int>, std::vector<int>> faces_of_edge;
+  for (Eigen::Index i = 0; i < t.rows(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      const int a = t(i, k), b = t(i, (k + 1) % 3);
+      faces_of_edge[{std::min(a, b), std::max(a, b)}].push_back(triangulation.face_of_triangle[i]);
+    }
+  std::vector<std::vector<int>> adjacency(face_count);
+  for (const auto& [edge, faces] : faces_of_edge)
+    for (int f : faces)
+      for (int g : faces)
+        if (f != g) adjacency[f].push_back(g);
+  for (std::vector<int>& list : adjacency) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  }
+  return adjacency;
+}
+
+std::vector<int> repair_stalled_labels(const Vertices& positions, const Triangulation& triangulation,
+                                       const std::vector<std::vector<int>>& adjacency, const FaceStates& states,
+                                       double min_deviation_deg, std::vector<int>& labels) {
+  const int face_count = static_cast<int>(labels.size());
+  std::vector<Eigen::Vector3d> normal(face_count, Eigen::Vector3d::Zero());
+  std::vector<char> stalled(face_count, 0);
+  const Triangles& t = triangulation.triangles;
+  for (Eigen::Index i = 0; i < t.rows(); ++i) {
+    const int f = triangulation.face_of_triangle[i];
+    const Eigen::Vector3d a = positions.row(t(i, 0)), b = positions.row(t(i, 1)), c = positions.row(t(i, 2));
+    normal[f] += (b - a).cross(c - a);
+    if (!states.collapsed[i] && states.deviation_deg[i] > min_deviation_deg) stalled[f] = 1;
+  }
+  // Decide on the labels as they were, then apply, so the order of faces
+  // does not matter.
+  std::vector<std::pair<int, int>> changes;
+  for (int f = 0; f < face_count; ++f) {
+    if (!stalled[f] || !(normal[f].norm() > 0.0)) continue;
+    // The neighbours' label closest to the face's normal, if it is closer
+    // than the face's own.
+    const Eigen::Vector3d unit = normal[f].normalized();
+    int best = -1;
+    double best_dot = unit.dot(label_axis(labels[f]));
+    for (int g : adjacency[f]) {
+      const double d = unit.dot(label_axis(labels[g]));
+      if (labels[g] != labels[f] && d > best_dot) {
+        best = labels[g];
+        best_dot = d;
+      }
+    }
+    if (best >= 0) changes.emplace_back(f, best);
+  }
+  // A polygon whose triangles do not all face the new axis would show a
+  // flipped triangle: leave it.
+  std::vector<char> refused(face_count, 0);
+  std::vector<int> proposal(face_count, -1);
+  for (const auto& [f, label] : changes) proposal[f] = label;
+  for (Eigen::Index i = 0; i < t.rows(); ++i) {
+    const int f = triangulation.face_of_triangle[i];
+    if (proposal[f] < 0 || states.collapsed[i]) continue;
+    const Eigen::Vector3d a = positions.row(t(i, 0)), b = positions.row(t(i, 1)), c = positions.row(t(i, 2));
+    if (!((b - a).cross(c - a).dot(label_axis(proposal[f])) > 0.0)) refused[f] = 1;
+  }
+  std::vector<int> changed;
+  for (const auto& [f, label] : changes) {
+    if (refused[f]) continue;
+    labels[f] = label;
+    changed.push_back(f);
+  }
+  return changed;
+}
+
+}  // namespace polycube

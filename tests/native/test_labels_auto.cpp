@@ -1,0 +1,235 @@
+// The automatic labeller: valid labels that make polycubes on shapes that
+// allow them, figures on real models, and the orientation round trip.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <chrono>
+#include <fstream>
+
+#include "core/auto_labels.h"
+#include "core/deform.h"
+#include "core/orientation.h"
+#include "core/validate_labels.h"
+#include "io/labels_io.h"
+#include "io/read_mesh.h"
+#include "test_meshes.h"
+
+namespace {
+
+using namespace polycube;
+
+bool exists(const std::string& path) { return std::ifstream(path).good(); }
+
+// A box with rounded (bevelled) edges and corners: the surface of an n^3 block
+// of quads in [-1, 1]^3, each point pulled onto the rounded box of inner half
+// size `inner` and radius 1 - inner.
+PolygonMesh bevelled_box(int n, double inner, const Eigen::Vector3d& size = Eigen::Vector3d::Ones()) {
+  std::set<std::array<int, 3>> voxels;
+  test_meshes::add_block(voxels, {0, 0, 0}, n, n, n);
+  PolygonMesh mesh = test_meshes::voxel_surface(voxels).mesh;
+  for (Eigen::Index v = 0; v < mesh.vertices.rows(); ++v) {
+    const Eigen::Vector3d p = mesh.vertices.row(v).transpose() * (2.0 / n) - Eigen::Vector3d::Ones();
+    const Eigen::Vector3d q = p.cwiseMax(-inner).cwiseMin(inner);
+    const Eigen::Vector3d d = p - q;
+    const Eigen::Vector3d r = d.norm() > 0 ? Eigen::Vector3d(q + (1 - inner) * d.normalized()) : p;
+    mesh.vertices.row(v) = r.cwiseProduct(size).transpose();
+  }
+  return mesh;
+}
+
+PolygonMesh rotated(PolygonMesh mesh, double degrees, const Eigen::Vector3d& axis) {
+  const Eigen::Matrix3d r = Eigen::AngleAxisd(degrees * M_PI / 180, axis.normalized()).toRotationMatrix();
+  mesh.vertices = (mesh.vertices * r.transpose()).eval();
+  return mesh;
+}
+
+PolygonMesh reversed(PolygonMesh mesh) {
+  for (int f = 0; f < mesh.faces.count(); ++f)
+    std::reverse(mesh.faces.indices.begin() + mesh.faces.offsets[f],
+                 mesh.faces.indices.begin() + mesh.faces.offsets[f + 1]);
+  return mesh;
+}
+
+void print_validation(const std::string& name, const LabelValidation& v) {
+  std::printf("  %-22s charts=%d boundaries=%d corners=%d violations=%zu\n", name.c_str(), v.charts, v.boundaries,
+              v.corners, v.violations.size());
+  for (const LabelViolation& violation : v.violations)
+    std::printf("    %s: chart %d (label %d), %zu faces%s\n", violation_kind_name(violation.kind), violation.chart,
+                violation.label, violation.faces.size(),
+                violation.vertex >= 0 ? (", vertex " + std::to_string(violation.vertex)).c_str() : "");
+}
+
+void print_figures(const std::string& name, const DeformResult& r, Variant variant = DeformOptions().variant) {
+  ::testing::Test::RecordProperty(name + "_flipped", r.figures.flipped_faces);
+  ::testing::Test::RecordProperty(name + "_max_deg", std::to_string(r.figures.normal_deviation_max_deg));
+  std::printf("  %-22s %-7s it=%3d converged=%d flipped=%d max=%.3f mean=%.3f collapsed=%d relabelled=%zu (%.2f s)\n",
+              name.c_str(), variant_name(variant), r.iterations, r.converged, r.figures.flipped_faces,
+              r.figures.normal_deviation_max_deg, r.figures.normal_deviation_mean_deg, r.figures.collapsed_faces,
+              r.relabelled_faces.size(), r.seconds.total);
+}
+
+TEST(AutoLabels, ShapesThatAllowAPolycubeGetValidLabelsAndBecomeOne) {
+  const std::pair<std::string, PolygonMesh> shapes[] = {
+      {"sphere", test_meshes::uv_sphere(32, 16)},
+      {"bevelled box", bevelled_box(12, 0.6, {1.4, 1.0, 0.8})},
+      {"torus", test_meshes::torus(48, 24)},
+      {"rotated bevelled box", rotated(bevelled_box(12, 0.5), 25, {1, 2, 0})},
+  };
+  for (const auto& [name, mesh] : shapes) {
+    SCOPED_TRACE(name);
+    const std::vector<int> labels = auto_labels(mesh);
+    const LabelValidation v = validate_labels(mesh, labels);
+    print_validation(name, v);
+    EXPECT_TRUE(v.valid());
+    EXPECT_GE(v.charts, 6);
+    const DeformResult r = deform(mesh, labels);  // the default variant
+    print_figures(name, r);
+    EXPECT_EQ(r.figures.flipped_faces, 0);
+    if (name == "torus") {
+      // The default (robust) variant does not yet converge on this torus with
+      // any labels, nearest-axis ones included (issue 6): the labels are shown
+      // to allow a polycube with the fixed variant meanwhile.
+      DeformOptions fixed;
+      fixed.variant = Variant::kFixed;
+      fixed.iterations = 300;
+      const DeformResult f = deform(mesh, labels, fixed);
+      print_figures(name, f, Variant::kFixed);
+      EXPECT_EQ(f.figures.flipped_faces, 0);
+      EXPECT_LT(f.figures.normal_deviation_max_deg, fixed.tolerance_deg);
+    } else {
+      EXPECT_LT(r.figures.normal_deviation_max_deg, DeformOptions().tolerance_deg);
+    }
+  }
+}
+
+TEST(AutoLabels, DeterministicAndCompactnessControlsChartCount) {
+  const PolygonMesh mesh = test_meshes::uv_sphere(48, 24, Eigen::Vector3d(1.3, 1.0, 0.8));
+  const std::vector<int> a = auto_labels(mesh), b = auto_labels(mesh);
+  EXPECT_EQ(a, b);
+  // A bumpy sphere: its nearest-axis labels are speckled with islands; the
+  // graph cut and the repair leave the six charts of a box.
+  PolygonMesh bumpy = test_meshes::uv_sphere(64, 32);
+  unsigned state = 12345;
+  for (Eigen::Index v = 0; v < bumpy.vertices.rows(); ++v) {
+    state = state * 1103515245u + 12345u;
+    bumpy.vertices.row(v) *= 1.0 + 0.03 * ((state >> 16) % 1000 / 1000.0 - 0.5);
+  }
+  AutoLabelOptions plain;
+  plain.compactness = 0.0;
+  plain.repair = false;
+  const LabelValidation nearest = validate_labels(bumpy, auto_labels(bumpy, plain));
+  const LabelValidation cut = validate_labels(bumpy, auto_labels(bumpy));
+  std::printf("  bumpy sphere: compactness 0: %d charts, %zu violations; default: %d charts, %zu violations\n",
+              nearest.charts, nearest.violations.size(), cut.charts, cut.violations.size());
+  EXPECT_GT(nearest.charts, 6);
+  EXPECT_EQ(cut.charts, 6);
+  EXPECT_TRUE(cut.valid());
+  EXPECT_THROW(auto_labels(mesh, AutoLabelOptions{-1.0}), Error);
+}
+
+// Input the solver takes must not break the labeller or the validator either.
+TEST(AutoLabels, OddInputStaysWellDefined) {
+  std::vector<std::pair<std::string, PolygonMesh>> meshes;
+  meshes.emplace_back("moebius", test_meshes::moebius_strip(60, 4));
+  PolygonMesh broken = test_meshes::uv_sphere(12, 8);
+  broken.faces.add({0, 1, 2});  // a duplicate face: a non-manifold edge
+  broken.faces.add({0, 1, 2});
+  broken.faces.add({3, 3, 4});     // a zero-area face with a repeated corner
+  broken.faces.add({5, 6, 5, 6});  // a flat quad
+  broken.vertices.conservativeResize(broken.vertices.rows() + 1, 3);
+  broken.vertices.row(broken.vertices.rows() - 1) << 5, 5, 5;  // an isolated vertex
+  meshes.emplace_back("duplicate and zero-area faces", broken);
+  PolygonMesh two = test_meshes::uv_sphere(16, 8);
+  const int n = static_cast<int>(two.vertices.rows());
+  const PolygonMesh other = test_meshes::torus(24, 12);
+  two.vertices.conservativeResize(n + other.vertices.rows(), 3);
+  two.vertices.bottomRows(other.vertices.rows()) = other.vertices.rowwise() + Eigen::RowVector3d(4, 0, 0);
+  for (int f = 0; f < other.faces.count(); ++f) {
+    for (int k = other.faces.offsets[f]; k < other.faces.offsets[f + 1]; ++k)
+      two.faces.indices.push_back(other.faces.indices[k] + n);
+    two.faces.offsets.push_back(static_cast<int>(two.faces.indices.size()));
+  }
+  meshes.emplace_back("sphere and torus", two);
+  for (const auto& [name, mesh] : meshes) {
+    SCOPED_TRACE(name);
+    const std::vector<int> labels = auto_labels(mesh);
+    ASSERT_EQ(static_cast<int>(labels.size()), mesh.faces.count());
+    for (int l : labels) EXPECT_TRUE(l >= 0 && l < 6);
+    EXPECT_EQ(auto_labels(mesh), labels);
+    const LabelValidation v = validate_labels(mesh, labels);
+    print_validation(name, v);
+    if (name == "sphere and torus") {
+      EXPECT_TRUE(v.valid());
+      EXPECT_EQ(v.charts, 6 + 10);
+    }
+  }
+  EXPECT_FALSE(orientation(meshes[0].second).orientable);
+  EXPECT_THROW(auto_labels(PolygonMesh{}), Error);
+}
+
+std::string cgal_mesh(const std::string& name) { return std::string(POLYCUBE_MESH_DATA) + "/" + name + ".off"; }
+
+// Real models: the labels pass the validator (where one does not, the
+// validator's list is printed); the deformation runs with them. Figures go to the test output (the closing note
+// of issue 4 has the full runs, made with `polycube deform --labels auto`).
+TEST(AutoLabels, RealModels) {
+  for (const std::string name : {"fandisk", "elephant", "eight", "bunny00"}) {
+    const std::string path = cgal_mesh(name);
+    if (!exists(path)) GTEST_SKIP() << path << " is missing: run `make data` (Debian libcgal-demo)";
+    SCOPED_TRACE(name);
+    const PolygonMesh mesh = read_mesh(path);
+    const auto start = std::chrono::steady_clock::now();
+    const std::vector<int> labels = auto_labels(mesh);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const LabelValidation v = validate_labels(mesh, labels);
+    print_validation(name + " (" + std::to_string(static_cast<int>(seconds * 1000)) + " ms)", v);
+    ::testing::Test::RecordProperty(name + "_charts", v.charts);
+    ::testing::Test::RecordProperty(name + "_violations", static_cast<int>(v.violations.size()));
+    for (const LabelViolation& violation : v.violations) {
+      EXPECT_FALSE(violation.faces.empty());
+      EXPECT_GE(violation.chart, 0);
+    }
+    // The nearest axis leaves fandisk 1 violation, elephant 270, eight 27,
+    // bunny00 439; the labeller leaves none on these four.
+    EXPECT_TRUE(v.valid());
+    EXPECT_LT(orientation(mesh, &labels).area_against_labels, 0.05);  // few faces labelled against their normal
+    DeformOptions options;
+    options.iterations = 10;  // enough to show it runs; the full figures are in the issue
+    const DeformResult r = deform(mesh, labels, options);
+    print_figures(name, r);
+    EXPECT_TRUE(r.positions.allFinite());
+  }
+}
+
+TEST(AutoLabels, B0StaysValid) {
+  const std::string dir = std::string(POLYCUBE_SHARED_DATA) + "/B0";
+  if (!exists(dir + "/surface.obj")) GTEST_SKIP() << dir << " is missing";
+  const PolygonMesh mesh = read_mesh(dir + "/surface.obj");
+  const LabelValidation v = validate_labels(mesh, auto_labels(mesh));
+  print_validation("B0 auto", v);
+  EXPECT_TRUE(v.valid());
+}
+
+// An inward-wound copy with the outward labels is detected, and flipping the
+// labels gives exactly the outward model's deformation.
+TEST(AutoLabels, InwardCopyIsDetectedAndFlippedLabelsRecoverTheResult) {
+  const std::string dir = std::string(POLYCUBE_SHARED_DATA) + "/B0";
+  if (!exists(dir + "/surface.obj")) GTEST_SKIP() << dir << " is missing";
+  const PolygonMesh outward = read_mesh(dir + "/surface.obj");
+  const std::vector<int> labels = read_labels(dir + "/labeling.txt", outward.faces.count());
+  const PolygonMesh inward = reversed(outward);
+  const Orientation o = orientation(inward, &labels);
+  EXPECT_TRUE(o.inward());
+  EXPECT_TRUE(o.labels_opposite);
+  EXPECT_FALSE(orientation(outward, &labels).labels_opposite);
+  DeformOptions options;
+  options.iterations = 10;
+  const DeformResult a = deform(outward, labels, options), b = deform(inward, flip_labels(labels), options);
+  print_figures("B0 outward", a);
+  print_figures("B0 inward, flipped", b);
+  EXPECT_LT((a.positions - b.positions).cwiseAbs().maxCoeff(), 1e-9 * outward.vertices.cwiseAbs().maxCoeff());
+  EXPECT_EQ(a.figures.flipped_faces, b.figures.flipped_faces);
+  EXPECT_NEAR(a.figures.normal_deviation_max_deg, b.figures.normal_deviation_max_deg, 1e-6);
+}
+
+}  // namespace

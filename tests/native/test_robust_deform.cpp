@@ -1,0 +1,280 @@
+// The `robust` variant (the default) against the targets of issue 6, on the
+// issue's table of real models, next to the paper's two plain variants.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+#include <functional>
+#include <set>
+
+#include "core/deform.h"
+#include "core/nearest_labels.h"
+#include "core/triangulate.h"
+#include "io/deform_report.h"
+#include "io/labels_io.h"
+#include "io/read_mesh.h"
+#include "test_meshes.h"
+
+namespace {
+
+using namespace polycube;
+
+bool exists(const std::string& path) { return std::ifstream(path).good(); }
+
+struct Model {
+  PolygonMesh mesh;
+  std::vector<int> labels;
+};
+
+// A libcgal-demo mesh with nearest-axis labels, or a shared/data model with
+// its published labeling. Empty when the file is missing.
+Model load(const std::string& name) {
+  Model model;
+  if (name == "B0" || name == "bone") {
+    const std::string dir = std::string(POLYCUBE_SHARED_DATA) + "/" + name;
+    if (!exists(dir + "/surface.obj")) return model;
+    model.mesh = read_mesh(dir + "/surface.obj");
+    model.labels = read_labels(dir + "/labeling.txt", model.mesh.faces.count());
+  } else {
+    std::string file = name;  // test names cannot hold '-': double_torus_example is double-torus-example
+    if (file == "double_torus_example") file = "double-torus-example";
+    const std::string path = std::string(POLYCUBE_MESH_DATA) + "/" + file + ".off";
+    if (!exists(path)) return model;
+    model.mesh = read_mesh(path);
+    model.labels = nearest_labels(model.mesh);
+  }
+  return model;
+}
+
+DeformOptions options(Variant variant, int iterations = 200) {
+  DeformOptions o;
+  o.variant = variant;
+  o.iterations = iterations;
+  return o;
+}
+
+void print(const std::string& name, const char* variant, const DeformResult& r) {
+  std::printf("  %-17s %-7s it=%4d max=%8.3f mean=%7.3f flipped=%4d collapsed=%4d edge=%.3f area=%.3f "
+              "relabelled=%zu unconverged=%zu %.2fs\n",
+              name.c_str(), variant, r.iterations, r.figures.normal_deviation_max_deg,
+              r.figures.normal_deviation_mean_deg, r.figures.flipped_faces, r.figures.collapsed_faces,
+              r.figures.edge_error, r.figures.area_error, r.relabelled_faces.size(), r.unconverged_faces.size(),
+              r.seconds.total);
+}
+
+// Polygon faces with a corner on an open boundary (an edge of one triangle).
+std::set<int> faces_touching_boundary(const PolygonMesh& mesh) {
+  const Triangulation tri = triangulate(mesh.vertices, mesh.faces);
+  std::map<std::pair<int, int>, int> uses;
+  for (Eigen::Index t = 0; t < tri.triangles.rows(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int a = tri.triangles(t, k), b = tri.triangles(t, (k + 1) % 3);
+      ++uses[{std::min(a, b), std::max(a, b)}];
+    }
+  std::set<int> boundary_vertices;
+  for (const auto& [edge, count] : uses)
+    if (count == 1) boundary_vertices.insert({edge.first, edge.second});
+  std::set<int> faces;
+  for (Eigen::Index t = 0; t < tri.triangles.rows(); ++t)
+    for (int k = 0; k < 3; ++k)
+      if (boundary_vertices.count(tri.triangles(t, k))) faces.insert(tri.face_of_triangle[t]);
+  return faces;
+}
+
+// One row of the issue's table. `gaps` names the targets the row does not
+// meet yet ("max": largest normal deviation, "collapsed", "edge", "area":
+// edge and area error); every other target is asserted. The notes in
+// deform.h (kRobust) say what is left.
+struct Row {
+  std::string name;
+  bool open;
+  std::set<std::string> gaps;
+};
+
+class IssueTable : public ::testing::TestWithParam<Row> {};
+
+// Targets (issue 6): zero flipped faces; largest normal deviation below the
+// tolerance (on open meshes: over faces not touching the boundary); collapsed
+// faces no more than the plain `fixed` variant; edge and area error no larger
+// than the better plain variant.
+TEST_P(IssueTable, DefaultMethodMeetsTheTargets) {
+  const Row row = GetParam();
+  const Model model = load(row.name);
+  if (model.mesh.faces.count() == 0) GTEST_SKIP() << row.name << " is missing: run `make data`";
+  const DeformResult fixed = deform(model.mesh, model.labels, options(Variant::kFixed));
+  const DeformResult current = deform(model.mesh, model.labels, options(Variant::kCurrent));
+  DeformOptions defaults;
+  defaults.iterations = 200;
+  const DeformResult robust = deform(model.mesh, model.labels, defaults);
+  print(row.name, "fixed", fixed);
+  print(row.name, "current", current);
+  print(row.name, variant_name(defaults.variant), robust);
+  ::testing::Test::RecordProperty("max_deg", std::to_string(robust.figures.normal_deviation_max_deg));
+  ::testing::Test::RecordProperty("iterations", robust.iterations);
+
+  EXPECT_EQ(robust.figures.flipped_faces, 0);
+  EXPECT_TRUE(robust.flipped_faces.empty());
+  // A target in `gaps` is not asserted, but the test says when it is met.
+  auto target = [&](const std::string& name, bool met) {
+    if (!row.gaps.count(name)) EXPECT_TRUE(met) << name << " target";
+    else if (met) std::printf("  %s now meets the %s target\n", row.name.c_str(), name.c_str());
+  };
+  target("collapsed", robust.figures.collapsed_faces <= fixed.figures.collapsed_faces);
+  // A thousandth of slack: the figures are means over thousands of faces.
+  target("edge", robust.figures.edge_error <= std::min(fixed.figures.edge_error, current.figures.edge_error) + 1e-3);
+  target("area", robust.figures.area_error <= std::min(fixed.figures.area_error, current.figures.area_error) + 1e-3);
+
+  std::set<int> boundary;
+  if (row.open) boundary = faces_touching_boundary(model.mesh);
+  int inside = 0;
+  for (int f : robust.unconverged_faces) inside += !boundary.count(f);
+  target("max", inside == 0);
+  if (!row.gaps.count("max") && !row.open) {
+    EXPECT_TRUE(robust.converged);
+    EXPECT_LT(robust.figures.normal_deviation_max_deg, 0.5);
+  }
+}
+
+// The issue's rows, then the other libcgal-demo models we tried.
+INSTANTIATE_TEST_SUITE_P(Robust, IssueTable,
+                         ::testing::Values(Row{"larger_sphere", false, {}}, Row{"B0", false, {}},
+                                           Row{"fandisk", false, {"max", "area"}}, Row{"elephant", false, {"max"}},
+                                           Row{"mesh_with_border", true, {"max"}}, Row{"bone", false, {"max"}},
+                                           Row{"eight", false, {"max"}}, Row{"cactus", false, {"max", "area"}},
+                                           Row{"joint", false, {"edge", "area"}},
+                                           Row{"anchor", false, {"max", "area"}},
+                                           Row{"double_torus_example", false, {"max", "collapsed", "edge", "area"}}),
+                         [](const auto& info) { return info.param.name; });
+
+// A fold-free path, not only a fold-free end: no iteration shows a flipped face.
+TEST(Robust, NoFlippedFaceAtAnyIterationOnB0AndTheSphere) {
+  for (const std::string name : {"larger_sphere", "B0"}) {
+    SCOPED_TRACE(name);
+    const Model model = load(name);
+    if (model.mesh.faces.count() == 0) GTEST_SKIP() << name << " is missing: run `make data`";
+    int iterations = 0, worst = 0;
+    const DeformResult r = deform(model.mesh, model.labels, options(Variant::kRobust),
+                                  [&](int, const Vertices&, const Figures& f) {
+                                    ++iterations;
+                                    worst = std::max(worst, f.flipped_faces);
+                                    return true;
+                                  });
+    EXPECT_GT(iterations, 0);
+    EXPECT_EQ(worst, 0);
+    EXPECT_TRUE(r.converged);
+  }
+}
+
+// The generated shapes the plain method handles: fold-free all the way, and
+// exact polycubes, except the torus (quads, nearest-axis labels), which is
+// left above the tolerance: some of its quads straddle a polycube edge, bent
+// along their diagonal, and no single label lets both triangles reach it
+// without one of them turning over (see deform.h).
+TEST(Robust, SphereEllipsoidAndTorusStayFoldFree) {
+  const std::pair<std::string, PolygonMesh> shapes[] = {
+      {"sphere", test_meshes::uv_sphere(32, 16)},
+      {"ellipsoid", test_meshes::uv_sphere(32, 16, Eigen::Vector3d(1.5, 1.0, 0.7))},
+      {"torus", test_meshes::torus(48, 24)},
+  };
+  for (const auto& [name, mesh] : shapes) {
+    SCOPED_TRACE(name);
+    int worst = 0;
+    const DeformResult r =
+        deform(mesh, nearest_labels(mesh), options(Variant::kRobust), [&](int, const Vertices&, const Figures& f) {
+          worst = std::max(worst, f.flipped_faces);
+          return true;
+        });
+    print(name, "robust", r);
+    EXPECT_EQ(worst, 0);
+    EXPECT_TRUE(r.flipped_faces.empty());
+    if (name != "torus") EXPECT_TRUE(r.converged);
+  }
+}
+
+// Whatever the labels ask, the robust variant turns no face over at any
+// iteration, on the other libcgal-demo models we tried, polygon meshes
+// (double-torus-example: quads to heptagons) included.
+TEST(Robust, NeverFoldsAFaceOnRealModels) {
+  for (const std::string name : {"double-torus-example", "cactus", "anchor", "joint"}) {
+    SCOPED_TRACE(name);
+    const Model model = load(name);
+    if (model.mesh.faces.count() == 0) GTEST_SKIP() << name << " is missing: run `make data`";
+    int worst = 0;
+    const DeformResult r = deform(model.mesh, model.labels, options(Variant::kRobust, 100),
+                                  [&](int, const Vertices&, const Figures& f) {
+                                    worst = std::max(worst, f.flipped_faces);
+                                    return true;
+                                  });
+    print(name, "robust", r);
+    EXPECT_EQ(worst, 0);
+  }
+}
+
+TEST(Robust, IsTheDefault) {
+  EXPECT_EQ(DeformOptions{}.variant, Variant::kRobust);
+  EXPECT_EQ(parse_variant("robust"), Variant::kRobust);
+  EXPECT_STREQ(variant_name(Variant::kRobust), "robust");
+}
+
+TEST(Robust, ExactPolycubesStayPut) {
+  std::set<std::array<int, 3>> voxels;
+  test_meshes::add_block(voxels, {0, 0, 0}, 6, 2, 2);
+  test_meshes::add_block(voxels, {0, 2, 0}, 2, 4, 2);
+  const test_meshes::LabelledMesh shape = test_meshes::voxel_surface(voxels);
+  DeformOptions o = options(Variant::kRobust, 5);
+  o.tolerance_deg = 0.0;  // run every iteration
+  const DeformResult r = deform(shape.mesh, shape.labels, o);
+  EXPECT_EQ(r.iterations, 5);
+  EXPECT_LT((r.positions - shape.mesh.vertices).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_TRUE(r.relabelled_faces.empty());
+}
+
+TEST(Robust, ComponentsKeepTheirCentroids) {
+  PolygonMesh a = test_meshes::uv_sphere(16, 8), b = test_meshes::uv_sphere(16, 8, Eigen::Vector3d(0.5, 0.5, 0.5));
+  PolygonMesh both = a;
+  const int nb = static_cast<int>(a.vertices.rows());
+  both.vertices.conservativeResize(2 * nb, 3);
+  both.vertices.bottomRows(nb) = b.vertices.rowwise() + Eigen::RowVector3d(5, 1, -2);
+  for (int f = 0; f < b.faces.count(); ++f) {
+    for (int k = b.faces.offsets[f]; k < b.faces.offsets[f + 1]; ++k) both.faces.indices.push_back(b.faces.indices[k] + nb);
+    both.faces.offsets.push_back(static_cast<int>(both.faces.indices.size()));
+  }
+  const DeformResult r = deform(both, nearest_labels(both), options(Variant::kRobust, 30));
+  EXPECT_LT((r.positions.topRows(nb).colwise().mean() - both.vertices.topRows(nb).colwise().mean()).norm(), 1e-9);
+  EXPECT_LT((r.positions.bottomRows(nb).colwise().mean() - both.vertices.bottomRows(nb).colwise().mean()).norm(),
+            1e-9);
+}
+
+// The faces that did not make it are listed by polygon id, in every variant,
+// and the JSON report carries them.
+TEST(Robust, UnconvergedAndFlippedFacesAreListed) {
+  const PolygonMesh mesh = test_meshes::uv_sphere(16, 8);
+  const std::vector<int> labels = nearest_labels(mesh);
+  const DeformResult early = deform(mesh, labels, options(Variant::kFixed, 1));
+  ASSERT_FALSE(early.converged);
+  ASSERT_FALSE(early.unconverged_faces.empty());
+  EXPECT_TRUE(std::is_sorted(early.unconverged_faces.begin(), early.unconverged_faces.end()));
+  for (int f : early.unconverged_faces) {
+    EXPECT_GE(f, 0);
+    EXPECT_LT(f, mesh.faces.count());
+  }
+  // Every face turned away from its axis is listed as flipped (and unconverged).
+  std::vector<int> opposite = labels;
+  opposite[3] ^= 1;
+  const DeformResult flipped = deform(mesh, opposite, options(Variant::kFixed, 0));
+  EXPECT_EQ(flipped.flipped_faces, std::vector<int>{3});
+  EXPECT_TRUE(std::binary_search(flipped.unconverged_faces.begin(), flipped.unconverged_faces.end(), 3));
+  const std::string json = deform_report_json(mesh, flipped, options(Variant::kFixed, 0));
+  EXPECT_NE(json.find("\"flipped_face_ids\": [3]"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"unconverged_faces\""), std::string::npos);
+  EXPECT_NE(json.find("\"relabelled_faces\": []"), std::string::npos) << json;
+
+  const DeformResult done = deform(mesh, labels, options(Variant::kRobust));
+  ASSERT_TRUE(done.converged);
+  EXPECT_TRUE(done.unconverged_faces.empty());
+  EXPECT_TRUE(done.flipped_faces.empty());
+  // Relabelled faces are listed and their new labels are in `labels`.
+  for (int f : done.relabelled_faces) EXPECT_NE(done.labels[f], labels[f]);
+}
+
+}  // namespace
