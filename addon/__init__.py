@@ -19,14 +19,21 @@ bl_info = {
 import bpy
 
 from . import label_cache, scrub, settings
+from .label_operators import (
+    OBJECT_OT_polycube_auto_label, OBJECT_OT_polycube_label_colours, OBJECT_OT_polycube_validate_labels)
 from .operators import OBJECT_OT_polycube_deform
 from .panel import VIEW3D_PT_polycube
 from .preferences import PolycubePreferences
+from .unconverged import OBJECT_OT_polycube_select_unconverged
 
 _classes = (
     PolycubePreferences,
     settings.PolycubeSceneSettings,
     OBJECT_OT_polycube_deform,
+    OBJECT_OT_polycube_auto_label,
+    OBJECT_OT_polycube_validate_labels,
+    OBJECT_OT_polycube_label_colours,
+    OBJECT_OT_polycube_select_unconverged,
     VIEW3D_PT_polycube,
 )
 

@@ -6,9 +6,12 @@
 
 --input takes a .blend, a mesh file Blender imports (.obj, .ply, .stl) or an .off
 file; without it a demo model is used (a UV sphere with face maps by nearest
-axis). Labels come from the objects (DESIGN.md section 3) or from --labels, a text
-file with one label per face (-1..5). The figures of each object are printed; the
-exit status is non-zero if any object could not be deformed.
+axis). Labels come from the objects (DESIGN.md section 3), from --labels FILE, a
+text file with one label per face (-1..5), or with --labels auto from the
+automatic labeller (written to the objects, as the Auto Label operator does).
+--subdivide K deforms a subdivided copy `<name> polycube` of each object. The
+figures of each deformed object are printed; the exit status is non-zero if any
+object could not be deformed.
 
 Labels are axes of each object's own (local) coordinates; mesh files are imported
 without axis conversion so they keep the coordinates written in the file.
@@ -34,11 +37,11 @@ _IMPORTERS = {  # newest operator first; later ones serve older Blender versions
 
 
 def main(argv):
-    args = _parse(argv)
     package = _load_package()
+    args = _parse(argv, package.native_options)
     try:
         targets = _load_input(args, package)
-        if args.labels:
+        if args.labels and args.labels != "auto":
             _apply_label_file(args.labels, targets, package)
     except ValueError as error:
         print(f"polycube: {error}", file=sys.stderr)
@@ -49,16 +52,21 @@ def main(argv):
         obj.select_set(True)
     bpy.context.view_layer.objects.active = targets[0]
     try:
+        if args.labels == "auto":
+            bpy.ops.object.polycube_auto_label(compactness=args.compactness)
         bpy.ops.object.polycube_deform(
             iterations=args.iterations, tolerance=args.tolerance, variant=args.variant.upper(),
             keep=args.keep.upper(), keep_every=args.keep_every, animate=args.animate,
-            start_frame=args.start_frame)
+            start_frame=args.start_frame, subdivide=args.subdivide > 0,
+            subdivide_levels=max(args.subdivide, 1), subdivide_scheme=args.scheme.upper())
     except RuntimeError as error:
         # bpy turns the operator's error reports into this exception, "Error: ..." each.
         print(f"polycube: {str(error).strip().removeprefix('Error: ')}", file=sys.stderr)
         return 1
 
-    reports = {obj.name: package.report.load_report(obj) for obj in targets if obj.type == 'MESH'}
+    # What was deformed is selected: the targets, or their subdivided copies.
+    reports = {obj.name: package.report.load_report(obj) for obj in bpy.context.selected_objects
+               if obj.type == 'MESH'}
     reports = {name: report for name, report in reports.items() if report is not None}
     for report in reports.values():
         _print_report(package, report)
@@ -79,24 +87,31 @@ def main(argv):
     return 0 if len(reports) == len(targets) else 1
 
 
-def _parse(argv):
+def _parse(argv, native_options):
     parser = argparse.ArgumentParser(
         prog="blender -b --factory-startup --python headless.py --",
         description="Deform mesh objects into their polycube, a shape key per iteration.")
     parser.add_argument("--input", help=".blend, .obj, .ply, .stl or .off (default: a demo sphere)")
     parser.add_argument("--objects", nargs="+", metavar="NAME",
                         help="objects to deform (default: every mesh object of the input)")
-    parser.add_argument("--labels", metavar="FILE",
-                        help="one label per face (-1..5 = none, +X, -X, +Y, -Y, +Z, -Z); one object only")
+    parser.add_argument("--labels", metavar="FILE|auto",
+                        help="a file with one label per face (-1..5 = none, +X, -X, +Y, -Y, +Z, -Z; "
+                             "one object only), or auto: the automatic labeller on every object")
+    parser.add_argument("--compactness", type=float, default=native_options.DEFAULT_COMPACTNESS,
+                        help="automatic labels: larger gives fewer, rounder charts")
     parser.add_argument("--iterations", type=int, default=100)
     parser.add_argument("--tolerance", type=float, default=0.5, help="degrees")
-    parser.add_argument("--variant", choices=("fixed", "current"), default="fixed")
+    parser.add_argument("--variant", choices=native_options.VARIANTS, default=native_options.DEFAULT_VARIANT)
     parser.add_argument("--keep", choices=("all", "every", "final"), default="all",
                         help="which iterations become shape keys")
     parser.add_argument("--keep-every", type=int, default=5, metavar="K")
     parser.add_argument("--animate", action="store_true",
                         help="keyframe the shape keys: frame start + k shows iteration k")
     parser.add_argument("--start-frame", type=int, default=1)
+    parser.add_argument("--subdivide", type=int, default=0, metavar="K",
+                        help="deform a copy '<name> polycube' subdivided K times (0: the object itself)")
+    parser.add_argument("--scheme", choices=("bilinear", "loop", "catmark"), default="bilinear",
+                        help="subdivision scheme")
     parser.add_argument("--output", metavar="FILE.blend", help="where to save the result")
     parser.add_argument("--preview", metavar="FILE.png",
                         help="Workbench render of the input beside the polycube")
@@ -118,7 +133,7 @@ def _load_package():
         sys.modules[name] = module
         spec.loader.exec_module(module)
         module.register()
-    for submodule in ("report", "preview", "labels", "mesh_arrays", "off_format", "polycube_native"):
+    for submodule in ("report", "preview", "labels", "mesh_arrays", "native_options", "polycube_native"):
         importlib.import_module(f"{name}.{submodule}")
     return sys.modules[name]
 
@@ -137,7 +152,7 @@ def _load_input(args, package):
             targets = [obj for obj in bpy.context.scene.objects if obj.type == 'MESH']
         elif extension == ".off":
             _remove_all_objects()
-            vertices, face_indices, face_sizes = package.off_format.read_off(path)
+            vertices, face_indices, face_sizes = package.polycube_native.read_mesh(path)
             name = os.path.splitext(os.path.basename(path))[0]
             mesh = package.mesh_arrays.new_mesh(name, vertices, face_indices, face_sizes)
             obj = bpy.data.objects.new(name, mesh)

@@ -7,6 +7,7 @@ import bpy
 from bpy.app.handlers import persistent
 
 from .labels import label_counts, read_labels
+from .validation import labels_digest
 
 
 class LabelSummary(NamedTuple):
@@ -14,6 +15,7 @@ class LabelSummary(NamedTuple):
     counts: list        # faces per label, LABEL_NAMES order
     unlabelled: int
     error: str          # why the labels cannot be used, or None
+    digest: str         # fingerprint of the labels (validation.labels_digest), or None
 
 
 _summaries = {}
@@ -29,9 +31,10 @@ def label_summary(obj):
     if summary is None:
         try:
             labels = read_labels(obj)
-            summary = LabelSummary(labels.source, *label_counts(labels.values), None)
+            summary = LabelSummary(labels.source, *label_counts(labels.values), None,
+                                   labels_digest(labels.values))
         except ValueError as error:
-            summary = LabelSummary(None, None, None, str(error))
+            summary = LabelSummary(None, None, None, str(error), None)
         _summaries[key] = summary
     return summary
 

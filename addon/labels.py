@@ -59,13 +59,36 @@ def write_label_attribute(mesh, values):
 
 
 def write_face_maps(obj, values):
-    """Blender 3.x only: one face map per label present, named as in LABEL_NAMES."""
-    values = np.asarray(values)
-    for label, name in enumerate(LABEL_NAMES):
-        faces = np.flatnonzero(values == label)
-        if len(faces):
-            face_map = obj.face_maps.get(name) or obj.face_maps.new(name=name)
-            face_map.add(faces.tolist())
+    """Blender 3.x only: put the faces into face maps named as in LABEL_NAMES.
+
+    Maps of those names are ours: refilled, and removed when left empty. A face
+    belongs to one face map at most, so faces in a user's other map (a name that
+    is no label, such as 'Notes') stay there and keep their label in the
+    attribute only; faces in a label map of another spelling ('PX') move to ours.
+    Returns how many faces stayed in the user's maps.
+    """
+    values = np.asarray(values, dtype=np.int32)
+    mesh = obj.data
+    if len(mesh.face_maps):
+        current = np.empty(len(values), dtype=np.int32)
+        mesh.face_maps[0].data.foreach_get("value", current)
+    else:
+        current = np.full(len(values), -1, dtype=np.int32)
+    # One slot past the maps stands for "in no map".
+    users = np.array([label_from_name(face_map.name) is None for face_map in obj.face_maps] + [False])
+    stays = users[np.where(current >= 0, current, len(users) - 1)]
+    map_of_label = np.full(len(LABEL_NAMES) + 1, -1, dtype=np.int32)  # last slot: unlabelled
+    for label in np.unique(values[~stays & (values >= 0)]):
+        name = LABEL_NAMES[label]
+        map_of_label[label] = (obj.face_maps.get(name) or obj.face_maps.new(name=name)).index
+    if not len(mesh.face_maps):
+        mesh.face_maps.new()
+    mesh.face_maps[0].data.foreach_set("value", np.where(stays, current, map_of_label[values]))
+    empty = [name for label, name in enumerate(LABEL_NAMES)
+             if map_of_label[label] < 0 and name in obj.face_maps]
+    for name in empty:
+        obj.face_maps.remove(obj.face_maps[name])  # Blender renumbers the later maps' faces
+    return int(stays.sum())
 
 
 def _read_int_face_attribute(attribute, face_count):

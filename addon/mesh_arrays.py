@@ -64,6 +64,18 @@ def read_mesh_arrays(mesh):
     return MeshArrays(vertices, face_indices, face_sizes)
 
 
+def face_of_corner(mesh):
+    """The face each loop (face corner) belongs to."""
+    sizes = np.empty(len(mesh.polygons), dtype=np.int32)
+    mesh.polygons.foreach_get("loop_total", sizes)
+    starts = np.empty(len(mesh.polygons), dtype=np.int32)
+    mesh.polygons.foreach_get("loop_start", starts)
+    faces = np.empty(len(mesh.loops), dtype=np.int64)
+    corner = np.arange(sizes.sum()) - np.repeat(np.cumsum(sizes) - sizes, sizes)
+    faces[np.repeat(starts, sizes) + corner] = np.repeat(np.arange(len(sizes)), sizes)
+    return faces
+
+
 def new_mesh(name, vertices, face_indices, face_sizes):
     """A Blender mesh from solver-style arrays (used to bring in OFF files)."""
     mesh = bpy.data.meshes.new(name)

@@ -11,20 +11,28 @@ from time import perf_counter
 import bpy
 
 from . import animation, shape_keys
-from .labels import label_counts, read_labels
+from .label_source import labels_for_run
+from .labels import label_counts
 from .mesh_arrays import read_mesh_arrays
 from .polycube_native import LABEL_NAMES
 from .report import store_report
+from .subdivide import remove_copy, subdivided_copy
 
 
 class ObjectRun:
     def __init__(self, obj, settings):
-        """Read the object's mesh and labels; ValueError (one sentence) if it cannot run."""
+        """Read the object's mesh and labels, and make its subdivided copy when the settings
+        ask for one; ValueError (one sentence), with nothing written, if it cannot run."""
         start = perf_counter()
-        self.object_name = obj.name
         self.settings = settings
         self.mesh = read_mesh_arrays(obj.data)
-        self.labels = read_labels(obj)
+        self.labels = labels_for_run(obj, self.mesh, settings.label_source, settings.compactness)
+        self.source_name = None  # the object a subdivided copy was made from
+        if settings.subdivide:
+            self.source_name = obj.name
+            obj, self.mesh, self.labels = subdivided_copy(
+                obj, self.mesh, self.labels, settings.subdivide_levels, settings.subdivide_scheme)
+        self.object_name = obj.name
         self.seconds_read = perf_counter() - start
         self.seconds_write = 0.0
         self.kept = []  # iterations written as shape keys, in order
@@ -71,6 +79,8 @@ class ObjectRun:
         self.seconds_write += perf_counter() - start
 
         counts, unlabelled = label_counts(self.labels.values)
+        if self.source_name is not None:
+            report["subdivided_from"] = self.source_name
         report.update(
             object=self.object_name,
             label_source=self.labels.source,
@@ -84,9 +94,11 @@ class ObjectRun:
         return report
 
     def discard(self):
-        """Take back the keys this run wrote (the run failed half-way)."""
+        """Take back what this run wrote (the run failed half-way): its keys or its copy."""
         obj = bpy.data.objects.get(self.object_name)
-        if obj is not None and self._started:
+        if obj is not None and self.source_name is not None:
+            remove_copy(obj)
+        elif obj is not None and self._started:
             animation.clear_animation(obj)
             shape_keys.remove_polycube_keys(obj)
 

@@ -12,9 +12,10 @@ import bpy
 
 from . import polycube_native, preferences
 from .object_run import ObjectRun
-from .report import outcome
+from .report import failure, outcome
 from .settings import DeformSettings
 from .solver_thread import SolverThread
+from .subdivide import source_object
 
 # Events that reach the rest of Blender while the solver runs: looking around only,
 # so nothing can edit, undo or delete the object that shape keys are being written to.
@@ -91,8 +92,13 @@ class OBJECT_OT_polycube_deform(DeformSettings, bpy.types.Operator):
     def _prepare(self, context):
         """An ObjectRun for each selected mesh that can be deformed; the rest go to _problems."""
         settings = self.snapshot()
-        runs, meshes = [], set()
+        runs, meshes, objects = [], set(), []
         for obj in sorted(context.selected_objects, key=lambda o: o.name):
+            if obj.type == 'MESH' and settings.subdivide:
+                obj = source_object(obj)  # a subdivided copy is made again from its source
+            if obj not in objects:
+                objects.append(obj)
+        for obj in objects:
             if obj.type != 'MESH':
                 self._problems.append(f"Skipped '{obj.name}': it is a {obj.type.lower()}, not a mesh.")
                 continue
@@ -104,7 +110,7 @@ class OBJECT_OT_polycube_deform(DeformSettings, bpy.types.Operator):
                 runs.append(ObjectRun(obj, settings))
                 meshes.add(obj.data.name)
             except ValueError as error:
-                self._problems.append(_sentence(obj.name, error))
+                self._problems.append(failure(obj.name, "deformed", error))
         return runs
 
     def _start_next(self, context):
@@ -148,8 +154,9 @@ class OBJECT_OT_polycube_deform(DeformSettings, bpy.types.Operator):
         """Start the next object's run; True when there is none left to run."""
         self._iterations_before += self.iterations
         if self._cancelled:
-            self._problems += [f"Cancelled before '{run.object_name}' was deformed."
-                               for run in self._pending]
+            for run in self._pending:
+                run.discard()  # a subdivided copy made for it goes again
+                self._problems.append(f"Cancelled before '{run.object_name}' was deformed.")
             self._pending = []
         if not self._pending:
             return True
@@ -180,7 +187,7 @@ class OBJECT_OT_polycube_deform(DeformSettings, bpy.types.Operator):
 
     def _fail(self, run, error):
         run.discard()
-        self._problems.append(_sentence(run.object_name, error))
+        self._problems.append(failure(run.object_name, "deformed", error))
 
     def _conclude(self, context):
         """Report what happened; FINISHED when at least one object was deformed."""
@@ -190,6 +197,7 @@ class OBJECT_OT_polycube_deform(DeformSettings, bpy.types.Operator):
             return {'CANCELLED'}
         for problem in self._problems:
             self.report({'WARNING'}, problem)
+        _select_copies(context, self._reports)
         ends = [report["animation_frames"][1] for report in self._reports
                 if "animation_frames" in report]
         if ends:
@@ -201,11 +209,16 @@ class OBJECT_OT_polycube_deform(DeformSettings, bpy.types.Operator):
         return {'FINISHED'}
 
 
-def _sentence(name, error):
-    message = str(error).strip().rstrip(".")
-    if message[1:2].islower():
-        message = message[0].lower() + message[1:]
-    return f"'{name}' was not deformed: {message}."
+def _select_copies(context, reports):
+    """Subdivided copies become the selection, as Blender's own Duplicate and Convert do."""
+    copies = [(bpy.data.objects.get(report["object"]), bpy.data.objects.get(report["subdivided_from"]))
+              for report in reports if "subdivided_from" in report]
+    for copy, source in copies:
+        if source is not None:
+            source.select_set(False)
+        if copy is not None:
+            copy.select_set(True)
+            context.view_layer.objects.active = copy
 
 
 def _summary(report):

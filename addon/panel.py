@@ -1,15 +1,27 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""The "Polycube" tab in the 3D view's sidebar: labels, settings, last run, scrubbing."""
+"""The "Polycube" tab in the 3D view's sidebar: labels (legend, validation), settings,
+last run, scrubbing. It only draws: what it shows is computed elsewhere and cached."""
 
 import bpy
 
 from .label_cache import label_summary
+from .label_colours import LABEL_COLOURS, UNLABELLED_COLOUR, colours_shown, display_colour
+from .label_operators import (
+    OBJECT_OT_polycube_auto_label, OBJECT_OT_polycube_label_colours, OBJECT_OT_polycube_validate_labels)
 from .labels import NO_LABELS
 from .operators import OBJECT_OT_polycube_deform
 from .polycube_native import LABEL_NAMES
 from .report import load_report, outcome
 from .scrub import shown_iteration
 from .shape_keys import polycube_keys
+from .unconverged import OBJECT_OT_polycube_select_unconverged, unconverged_count
+from .validation import load_validation
+
+_KIND_NAMES = {
+    "too_few_neighbours": "Fewer than 4 neighbours",
+    "opposite_neighbours": "Opposite neighbours",
+    "corner_too_many_charts": "Corners of 4+ charts",
+}
 
 
 class VIEW3D_PT_polycube(bpy.types.Panel):
@@ -20,13 +32,13 @@ class VIEW3D_PT_polycube(bpy.types.Panel):
 
     def draw(self, context):
         layout = self.layout
+        settings = context.scene.polycube
         obj = context.active_object
         if obj is None or obj.type != 'MESH':
             layout.label(text="Select a mesh object", icon='INFO')
         else:
-            _draw_labels(layout.box(), obj)
+            _draw_labels(layout.box(), obj, settings)
 
-        settings = context.scene.polycube
         settings.draw_settings(layout.column())
         button = layout.operator(OBJECT_OT_polycube_deform.bl_idname, icon='MESH_CUBE')
         settings.copy_settings_to(button)
@@ -38,7 +50,7 @@ class VIEW3D_PT_polycube(bpy.types.Panel):
             _draw_scrub(layout, obj)
 
 
-def _draw_labels(layout, obj):
+def _draw_labels(layout, obj, settings):
     summary = label_summary(obj)
     if summary.error is not None:
         layout.label(text="Labels cannot be used:", icon='ERROR')
@@ -50,14 +62,48 @@ def _draw_labels(layout, obj):
                 line = ""
             line += word + " "
         layout.label(text=line)
+    else:
+        source = "None: nearest axis" if summary.source == NO_LABELS else summary.source.capitalize()
+        layout.label(text=source, icon='FACESEL')
+        # The legend: each label's colour in the viewport, and its faces.
+        grid = layout.grid_flow(row_major=True, columns=2, even_columns=True, align=True)
+        for name, count, colour in zip(LABEL_NAMES, summary.counts, LABEL_COLOURS):
+            row = grid.row(align=True)
+            row.template_node_socket(color=display_colour(colour))
+            row.label(text=f"{name}: {count}")
+        if summary.unlabelled:
+            row = layout.row(align=True)
+            row.template_node_socket(color=display_colour(UNLABELLED_COLOUR))
+            row.label(text=f"Unlabelled: {summary.unlabelled} (nearest axis)")
+        _draw_validation(layout, load_validation(obj, summary.digest))
+
+    row = layout.row(align=True)
+    button = row.operator(OBJECT_OT_polycube_auto_label.bl_idname, icon='SHADERFX')
+    button.compactness = settings.compactness
+    row.operator(OBJECT_OT_polycube_validate_labels.bl_idname, icon='CHECKMARK')
+    row = layout.row(align=True)
+    shown = colours_shown(obj.data)
+    row.operator(OBJECT_OT_polycube_label_colours.bl_idname, icon='COLOR',
+                 text="Refresh Colours" if shown else "Show Colours").show = True
+    if shown:
+        row.operator(OBJECT_OT_polycube_label_colours.bl_idname, icon='X', text="Hide").show = False
+
+
+def _draw_validation(layout, validation):
+    if validation is None:
+        layout.label(text="Labels not validated", icon='QUESTION')
         return
-    source = "None: nearest axis" if summary.source == NO_LABELS else summary.source.capitalize()
-    layout.label(text=source, icon='FACESEL')
-    grid = layout.grid_flow(row_major=True, columns=2, even_columns=True, align=True)
-    for name, count in zip(LABEL_NAMES, summary.counts):
-        grid.label(text=f"{name}: {count}")
-    if summary.unlabelled:
-        layout.label(text=f"Unlabelled: {summary.unlabelled} (nearest axis)")
+    if validation["valid"]:
+        layout.label(text="Valid polycube labels", icon='CHECKMARK')
+    else:
+        layout.label(text=f"{validation['violations']} violations", icon='ERROR')
+    column = layout.column(align=True)
+    rows = [("Charts", validation["charts"]), ("Corners", validation["corners"])]
+    rows += [(_KIND_NAMES.get(kind, kind), count) for kind, count in validation["kinds"].items()]
+    for name, value in rows:
+        split = column.split(factor=0.6)
+        split.label(text=name)
+        split.label(text=str(value))
 
 
 def _draw_report(layout, report):
@@ -72,16 +118,22 @@ def _draw_report(layout, report):
         ("Edge error", f"{report['edge_error']:.4f}"),
         ("Area error", f"{report['area_error']:.4f}"),
         ("Unlabelled faces", str(report["unlabelled_faces"])),
+        ("Labels", report["label_source"]),
         ("Shape keys", str(len(report.get("kept_iterations", ())))),
         ("Read", f"{seconds['read']:.3f} s"),
         ("Solve", f"{seconds['deform_call']:.3f} s"),
         ("Write", f"{seconds['write']:.3f} s"),
     )
+    unconverged = unconverged_count(report)
+    if unconverged is not None:
+        rows += (("Unconverged faces", str(unconverged)),)
     column = layout.column(align=True)
     for name, value in rows:
         split = column.split(factor=0.6)
         split.label(text=name)
         split.label(text=value)
+    if unconverged:
+        layout.operator(OBJECT_OT_polycube_select_unconverged.bl_idname, icon='RESTRICT_SELECT_OFF')
 
 
 def _draw_scrub(layout, obj):

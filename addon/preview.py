@@ -9,16 +9,11 @@ import bpy
 import numpy as np
 from mathutils import Matrix, Vector
 
+from .label_colours import colour_faces
 from .labels import read_labels
 from .mesh_arrays import read_coordinates, read_mesh_arrays
 from .polycube_native import nearest_labels
 
-# +X, -X, +Y, -Y, +Z, -Z: one hue per axis, darker for the negative side.
-_LABEL_COLOURS = np.array([
-    (0.90, 0.25, 0.20, 1.0), (0.45, 0.10, 0.08, 1.0),
-    (0.35, 0.75, 0.25, 1.0), (0.12, 0.38, 0.10, 1.0),
-    (0.25, 0.45, 0.95, 1.0), (0.10, 0.18, 0.50, 1.0),
-], dtype=np.float32)
 _VIEW_FROM = Vector((0.6, -1.0, 0.7)).normalized()   # front, right and above
 
 
@@ -60,21 +55,8 @@ def _copy(scene, obj, mesh, labels):
     copy.matrix_world = obj.matrix_world
     scene.collection.objects.link(copy)
     if len(mesh.polygons) == len(labels):
-        _colour_faces(mesh, labels)
+        colour_faces(mesh, labels)
     return copy
-
-
-def _colour_faces(mesh, labels):
-    sizes = np.empty(len(mesh.polygons), dtype=np.int32)
-    mesh.polygons.foreach_get("loop_total", sizes)
-    starts = np.empty(len(mesh.polygons), dtype=np.int32)
-    mesh.polygons.foreach_get("loop_start", starts)
-    face_of_loop = np.empty(len(mesh.loops), dtype=np.int64)
-    corner = np.arange(sizes.sum()) - np.repeat(np.cumsum(sizes) - sizes, sizes)
-    face_of_loop[np.repeat(starts, sizes) + corner] = np.repeat(np.arange(len(sizes)), sizes)
-    attribute = mesh.color_attributes.new("polycube label", 'BYTE_COLOR', 'CORNER')
-    attribute.data.foreach_set("color", _LABEL_COLOURS[labels[face_of_loop]].ravel())
-    mesh.color_attributes.active_color = attribute
 
 
 def _world_points(objects):

@@ -4,12 +4,26 @@
 import numpy as np
 
 REPORT_PROPERTY = "polycube_report"
+# Face lists (the native report's `<key>` beside `<key>_count`: unconverged_faces, ...)
+# are kept apart, so the sidebar, which reads the report at every redraw, does not
+# convert them.
+FACES_PROPERTY = "polycube_report_faces"
 # Blender 3.x ID properties have no booleans: these come back from 0/1.
 _BOOLEAN_KEYS = ("converged", "stopped")
 
 
 def store_report(obj, report):
-    obj[REPORT_PROPERTY] = _plain(report)
+    lists = {key for key, value in report.items()
+             if f"{key}_count" in report and isinstance(value, (list, tuple, np.ndarray))}
+    obj[REPORT_PROPERTY] = _plain({key: value for key, value in report.items() if key not in lists})
+    obj[FACES_PROPERTY] = {key: np.asarray(report[key], dtype=np.int32) for key in lists}
+
+
+def report_faces(obj, key):
+    """A face list of the last run's report (ids of the object's faces), empty if none."""
+    stored = obj.get(FACES_PROPERTY)
+    values = stored.get(key) if hasattr(stored, "get") else None
+    return np.array(values if values is not None else (), dtype=np.int64)
 
 
 def load_report(obj):
@@ -21,6 +35,14 @@ def load_report(obj):
         if key in report:
             report[key] = bool(report[key])
     return report
+
+
+def failure(name, verb, error):
+    """One sentence: object `name` was not <verb> because of `error`."""
+    message = str(error).strip().rstrip(".")
+    if message[1:2].islower():
+        message = message[0].lower() + message[1:]
+    return f"'{name}' was not {verb}: {message}."
 
 
 def outcome(report):

@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""The deformation settings, declared once for the operator and the panel.
+"""The settings, declared once for the operators and the panel.
 
-The operator inherits them (redo panel); the scene keeps a copy
+The operators inherit them (redo panel); the scene keeps a copy
 (`scene.polycube`) so the sidebar remembers what the user chose between runs.
 """
 
@@ -10,8 +10,33 @@ from collections import namedtuple
 import bpy
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty
 
+from .native_options import DEFAULT_COMPACTNESS, DEFAULT_VARIANT, variant_items
 
-class DeformSettings:
+
+def _setting_names(cls):
+    """The properties a settings class declares, its mixins' first."""
+    return tuple(name for base in reversed(cls.__mro__)
+                 for name in base.__dict__.get("__annotations__", {}))
+
+
+class LabelSettings:
+    compactness: FloatProperty(
+        name="Compactness",
+        description="Automatic labels: larger values give fewer, rounder charts",
+        default=DEFAULT_COMPACTNESS, min=0.0, soft_max=10.0, precision=2)
+
+
+class DeformSettings(LabelSettings):
+    label_source: EnumProperty(
+        name="Labels", description="Where each face's label comes from",
+        items=(
+            ('STORED', "Face Maps / Attribute",
+             "The object's face maps or polycube_label attribute; unlabelled faces take their nearest axis"),
+            ('AUTO', "Automatic", "Label every face automatically, ignoring the stored labels"),
+            ('AUTO_UNLABELLED', "Automatic Where Unlabelled",
+             "Keep the stored labels and label the other faces automatically"),
+        ),
+        default='STORED')
     iterations: IntProperty(
         name="Iterations", description="Most solver iterations to run",
         default=100, min=1, soft_max=1000)
@@ -20,13 +45,8 @@ class DeformSettings:
         description="Stop once every face's normal is within this many degrees of its label's axis",
         default=0.5, min=1e-4, soft_max=10.0, precision=3)
     variant: EnumProperty(
-        name="Solver", description="Which Laplacian the solver uses",
-        items=(
-            ('FIXED', "Fixed", "Cotangent Laplacian of the input mesh, factorised once: fast"),
-            ('CURRENT', "Current",
-             "Laplacian of the current mesh, refactorised every iteration (as in the paper)"),
-        ),
-        default='FIXED')
+        name="Solver", description="How the solver steps towards the polycube",
+        items=variant_items(), default=DEFAULT_VARIANT.upper())
     keep: EnumProperty(
         name="Keep", description="Which iterations become shape keys",
         items=(
@@ -42,10 +62,28 @@ class DeformSettings:
         description="Keyframe the shape keys: frame start + k shows iteration k", default=False)
     start_frame: IntProperty(
         name="Start Frame", description="Frame that shows the input mesh", default=1)
+    subdivide: BoolProperty(
+        name="Subdivide Before",
+        description="Deform a subdivided copy, the object '<name> polycube', instead of the mesh itself",
+        default=False)
+    subdivide_levels: IntProperty(
+        name="Levels", description="Subdivision levels: each one splits every face in four",
+        default=1, min=1, max=6)
+    subdivide_scheme: EnumProperty(
+        name="Scheme", description="How OpenSubdiv places the new vertices",
+        items=(
+            ('BILINEAR', "Bilinear", "Split faces in place: the shape stays exactly as it is"),
+            ('LOOP', "Loop", "Smooth subdivision of triangle meshes"),
+            ('CATMARK', "Catmull-Clark", "Smooth subdivision into quads"),
+        ),
+        default='BILINEAR')
 
     def draw_settings(self, layout):
         layout.use_property_split = True
         layout.use_property_decorate = False
+        layout.prop(self, "label_source")
+        if self.label_source != 'STORED':
+            layout.prop(self, "compactness")
         layout.prop(self, "iterations")
         layout.prop(self, "tolerance")
         layout.prop(self, "variant")
@@ -55,9 +93,13 @@ class DeformSettings:
         layout.prop(self, "animate")
         if self.animate:
             layout.prop(self, "start_frame")
+        layout.prop(self, "subdivide")
+        if self.subdivide:
+            layout.prop(self, "subdivide_levels")
+            layout.prop(self, "subdivide_scheme")
 
     def copy_settings_to(self, target):
-        for name in DeformSettings.__annotations__:
+        for name in _setting_names(DeformSettings):
             setattr(target, name, getattr(self, name))
 
     def snapshot(self):
@@ -65,7 +107,7 @@ class DeformSettings:
         return RunSettings(*(getattr(self, name) for name in RunSettings._fields))
 
 
-class RunSettings(namedtuple("RunSettings", DeformSettings.__annotations__)):
+class RunSettings(namedtuple("RunSettings", _setting_names(DeformSettings))):
     __slots__ = ()
 
     def keeps(self, iteration):

@@ -3,10 +3,13 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 
+#include "core/parallel.h"
+
 namespace polycube {
 
 CotangentWeights cotangent_weights(const Vertices& vertices, const Triangles& triangles) {
   CotangentWeights weights(triangles.rows(), 3);
+#pragma omp parallel for num_threads(parallel_threads(triangles.rows())) schedule(static)
   for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
     for (int k = 0; k < 3; ++k) {
       const Eigen::Vector3d p = vertices.row(triangles(t, k));

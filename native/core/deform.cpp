@@ -1,7 +1,6 @@
 #include "core/deform.h"
 
 #include <Eigen/Geometry>
-#include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <chrono>
 
@@ -16,6 +15,7 @@
 #include "core/laplacian.h"
 #include "core/nearest_labels.h"
 #include "core/poisson_rhs.h"
+#include "core/sparse_cholesky.h"
 #include "core/rotated_edges_rhs.h"
 #include "core/triangulate.h"
 
@@ -43,7 +43,6 @@ constexpr int kStallIterations = 10;
 constexpr double kProgress = 0.01;
 constexpr double kRepairDeviationDeg = 45.0;
 
-using Factorization = Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>>;
 
 class Stopwatch {
  public:
@@ -72,10 +71,12 @@ Eigen::MatrixX3d component_centroids(const Vertices& x, const Components& compon
   return sum;
 }
 
-void factorize(Factorization& factorization, const SparseMatrix& matrix) {
-  factorization.factorize(matrix);
-  if (factorization.info() != Eigen::Success)
-    throw Error("the sparse factorisation of the Laplacian failed (the mesh may be badly degenerate)");
+
+// Below the tolerance, and not by collapsing: collapsed triangles are left out
+// of the normal figures, so a mesh squeezed flat or to a point would pass
+// (the paper's `current` variant does that to armadillo and bunny00).
+bool converged(const Figures& figures, double tolerance_deg, Eigen::Index triangles) {
+  return figures.normal_deviation_max_deg < tolerance_deg && 2 * static_cast<Eigen::Index>(figures.collapsed_faces) < triangles;
 }
 
 }  // namespace
@@ -125,15 +126,15 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
   QualityMeasure quality(mesh.vertices, triangles, triangle_labels);
   Vertices x = mesh.vertices;
   result.figures = quality.measure(x);
-  result.converged = result.figures.normal_deviation_max_deg < options.tolerance_deg;
+  result.converged = converged(result.figures, options.tolerance_deg, triangles.rows());
   result.seconds.measure += phase.lap();
 
   Laplacian laplacian(n, triangles);
-  Factorization factorization;
-  factorization.analyzePattern(laplacian.matrix());
+  SparseCholesky factorization;
+  factorization.analyze(laplacian.matrix());
   Eigen::MatrixX3d solution(n, 3);
   // Solves L y = rhs and puts every component's centroid back where it was.
-  auto solve = [&](const Factorization& factorization, const Eigen::MatrixX3d& rhs, int iteration) {
+  auto solve = [&](const SparseCholesky& factorization, const Eigen::MatrixX3d& rhs, int iteration) {
     solution = factorization.solve(rhs);
     if (!solution.allFinite())
       throw Error("the linear solve gave non-finite positions at iteration " + std::to_string(iteration));
@@ -149,7 +150,7 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
   auto finish_iteration = [&](int iteration) {
     result.figures = quality.measure(x);
     result.iterations = iteration;
-    result.converged = result.figures.normal_deviation_max_deg < options.tolerance_deg;
+    result.converged = converged(result.figures, options.tolerance_deg, triangles.rows());
     result.seconds.measure += phase.lap();
     if (callback && !callback(iteration, x, result.figures)) {
       result.stopped = true;
@@ -167,11 +168,11 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
     const CotangentWeights weights = cotangent_weights(mesh.vertices, triangles).cwiseMax(0.0);
     const double shift = laplacian.assemble(weights, kRelativeShift);
     result.seconds.assemble += phase.lap();
-    if (!result.converged) factorize(factorization, laplacian.matrix());
+    if (!result.converged) factorization.factorize(laplacian.matrix());
     result.seconds.factorize += phase.lap();
     // The Laplacian of the current mesh, for the steps the input's cannot take.
     Laplacian current_laplacian(n, triangles);
-    Factorization current_factorization;
+    SparseCholesky current_factorization;
     bool current_analyzed = false;
 
     FaceStateMeasure state_measure(mesh.vertices, triangles, triangle_labels);
@@ -218,10 +219,10 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
         if (step.limited > 0) {
           const CotangentWeights current = cotangent_weights(x, triangles).cwiseMax(0.0);
           const double current_shift = current_laplacian.assemble(current, kRelativeShift);
-          if (!current_analyzed) current_factorization.analyzePattern(current_laplacian.matrix());
+          if (!current_analyzed) current_factorization.analyze(current_laplacian.matrix());
           current_analyzed = true;
           result.seconds.assemble += phase.lap();
-          factorize(current_factorization, current_laplacian.matrix());
+          current_factorization.factorize(current_laplacian.matrix());
           result.seconds.factorize += phase.lap();
           rhs = poisson_rhs(x, triangles, current, triangle_labels) + current_shift * x;
           result.seconds.rotations += phase.lap();
@@ -258,6 +259,7 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
     }
     for (int f = 0; f < mesh.faces.count(); ++f)
       if (relabelled[f]) result.relabelled_faces.push_back(f);
+    result.factorizations += current_factorization.factorizations();
   } else {
     CotangentWeights weights;
     double shift = 0.0;
@@ -265,7 +267,7 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
       weights = cotangent_weights(from, triangles);
       shift = laplacian.assemble(weights, kRelativeShift);
       result.seconds.assemble += phase.lap();
-      factorize(factorization, laplacian.matrix());
+      factorization.factorize(laplacian.matrix());
       result.seconds.factorize += phase.lap();
     };
     if (options.variant == Variant::kFixed && !result.converged) rebuild(mesh.vertices);
@@ -296,6 +298,8 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
     }
     result.seconds.measure += phase.lap();
   }
+  result.factorizations += factorization.factorizations();
+  result.solver = factorization.backend();
   result.positions = std::move(x);
   result.seconds.total = total.lap();
   return result;

@@ -77,7 +77,7 @@ struct DeformResult {
   std::vector<int> labels;  // per polygon face, unlabelled ones replaced by their nearest axis
   Figures figures;          // of `positions`
   int iterations = 0;
-  bool converged = false;   // largest normal deviation below the tolerance
+  bool converged = false;   // largest normal deviation below the tolerance, and not degenerate (see deform.cpp)
   bool stopped = false;     // the callback asked to stop
   int unlabelled_faces = 0;
   int triangles = 0;
@@ -90,6 +90,8 @@ struct DeformResult {
   // not reach its axis without folding (label_repair.h); `labels` holds the
   // new ones and the figures are measured against them.
   std::vector<int> relabelled_faces;
+  int factorizations = 0;   // numeric factorisations of a Laplacian
+  std::string solver;       // the factorisation used (sparse_cholesky.h)
   PhaseSeconds seconds;
 };
 

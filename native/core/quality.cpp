@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/axis.h"
+#include "core/parallel.h"
 
 namespace polycube {
 namespace {
@@ -42,10 +43,13 @@ QualityMeasure::QualityMeasure(const Vertices& input, const Triangles& triangles
 QualityMeasure::Areas QualityMeasure::areas(const Vertices& v) const {
   Areas result;
   result.area.resize(triangles_.rows());
+  double total = 0.0;
+#pragma omp parallel for num_threads(parallel_threads(triangles_.rows())) reduction(+ : total)
   for (Eigen::Index f = 0; f < triangles_.rows(); ++f) {
     result.area[f] = 0.5 * triangle_normal(v, triangles_, f).norm();
-    result.total += result.area[f];
+    total += result.area[f];
   }
+  result.total = total;
   return result;
 }
 
@@ -55,8 +59,11 @@ Figures QualityMeasure::measure(const Vertices& output) const {
   const double scale2 = input_areas_.total > 0.0 && out.total > 0.0 ? out.total / input_areas_.total : 1.0;
   const double scale = std::sqrt(scale2);
 
-  double weighted_deviation = 0.0, counted_area = 0.0, area_error = 0.0;
-  int area_count = 0;
+  double weighted_deviation = 0.0, counted_area = 0.0, area_error = 0.0, max_deviation = 0.0;
+  int area_count = 0, collapsed = 0, flipped = 0;
+#pragma omp parallel for num_threads(parallel_threads(triangles_.rows())) \
+    reduction(+ : weighted_deviation, counted_area, area_error, area_count, collapsed, flipped) \
+    reduction(max : max_deviation)
   for (Eigen::Index f = 0; f < triangles_.rows(); ++f) {
     const double a_in = input_areas_.area[f], a_out = out.area[f];
     if (a_in > 0.0) {
@@ -64,23 +71,28 @@ Figures QualityMeasure::measure(const Vertices& output) const {
       ++area_count;
     }
     if (a_out <= kCollapsedAreaRatio * scale2 * a_in || a_out == 0.0) {
-      ++figures.collapsed_faces;
+      ++collapsed;
       continue;
     }
     const Eigen::Vector3d unit = triangle_normal(output, triangles_, f) / (2.0 * a_out);
     const Eigen::Vector3d axis = label_axis(labels_[f]);
     const double deviation = angle_deg(unit, axis);
-    figures.normal_deviation_max_deg = std::max(figures.normal_deviation_max_deg, deviation);
+    max_deviation = std::max(max_deviation, deviation);
     weighted_deviation += a_out * deviation;
     counted_area += a_out;
-    if (unit.dot(axis) < 0.0) ++figures.flipped_faces;
+    if (unit.dot(axis) < 0.0) ++flipped;
   }
+  figures.normal_deviation_max_deg = max_deviation;
+  figures.collapsed_faces = collapsed;
+  figures.flipped_faces = flipped;
   figures.normal_deviation_mean_deg = counted_area > 0.0 ? weighted_deviation / counted_area : 0.0;
   figures.area_error = area_count > 0 ? area_error / area_count : 0.0;
 
   double edge_error = 0.0;
-  int edge_count = 0;
-  for (size_t e = 0; e < edges_.size(); ++e) {
+  long edge_count = 0;
+  const long edges = static_cast<long>(edges_.size());
+#pragma omp parallel for num_threads(parallel_threads(edges)) reduction(+ : edge_error, edge_count)
+  for (long e = 0; e < edges; ++e) {
     if (input_lengths_[e] <= 0.0) continue;
     const double length = (output.row(edges_[e].first) - output.row(edges_[e].second)).norm();
     edge_error += std::abs(length / (scale * input_lengths_[e]) - 1.0);

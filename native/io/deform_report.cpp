@@ -35,7 +35,9 @@ JsonWriter deform_report(const PolygonMesh& mesh, const DeformResult& r, const D
       .add("iterations", r.iterations)
       .add("converged", r.converged)
       .add("stopped", r.stopped)
-      .add("unlabelled_faces", r.unlabelled_faces);
+      .add("unlabelled_faces", r.unlabelled_faces)
+      .add("solver", r.solver)
+      .add("factorizations", r.factorizations);
   add_figures(json, r.figures);
   add_faces(json, "unconverged_faces", r.unconverged_faces);
   add_faces(json, "flipped_face_ids", r.flipped_faces);

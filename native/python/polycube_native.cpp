@@ -227,7 +227,7 @@ PYBIND11_MODULE(polycube_native, m) {
 
   m.def("deform", &deform_py, py::arg("vertices"), py::arg("face_indices"), py::arg("face_sizes"),
         py::arg("labels"), py::kw_only(), py::arg("iterations") = 100, py::arg("tolerance") = 0.5,
-        py::arg("variant") = "fixed", py::arg("callback") = py::none(),
+        py::arg("variant") = variant_name(DeformOptions{}.variant), py::arg("callback") = py::none(),
         R"(Deform a mesh towards its polycube.
 
 vertices (n, 3) float; face_indices: all face corners, flat; face_sizes: corners per face;

@@ -2,7 +2,7 @@
 """Prints the quality figures and phase timings of `build/polycube deform` on the
 real-model corpus, one Markdown row per model and variant.
 
-    /usr/bin/python3 tests/benchmark/figures_table.py [--variants fixed,current] [--iterations 200]
+    /usr/bin/python3 tests/benchmark/figures_table.py [--variants robust,fixed,current] [--iterations 200]
 """
 import argparse
 import json
@@ -38,7 +38,7 @@ COLUMNS = [
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--variants", default="fixed,current")
+    parser.add_argument("--variants", default="robust,fixed,current")
     parser.add_argument("--iterations", type=int, default=200)
     parser.add_argument("--models", default=",".join(name for name, _, _ in CORPUS))
     parser.add_argument("--program", default=str(ROOT / "build" / "polycube"))

@@ -104,8 +104,7 @@ def labelled_sphere(name="Sphere", **kwargs):
 
 def off_object(path):
     import polycube
-    from polycube.off_format import read_off
-    vertices, face_indices, face_sizes = read_off(path)
+    vertices, face_indices, face_sizes = polycube.polycube_native.read_mesh(path)
     name = os.path.splitext(os.path.basename(path))[0]
     obj = bpy.data.objects.new(name, polycube.mesh_arrays.new_mesh(name, vertices, face_indices, face_sizes))
     bpy.context.scene.collection.objects.link(obj)

@@ -11,7 +11,6 @@ from harness import (  # noqa: E402
     nearest_axis_labels, off_object, report, run_tests, vertices)
 
 polycube = enable_addon()
-from polycube.off_format import read_off  # noqa: E402
 FANDISK = os.path.join(MESHES, "fandisk.off")
 ITERATIONS = 100
 TOLERANCE = 0.5
@@ -20,7 +19,7 @@ TOLERANCE = 0.5
 def test_fandisk_shape_keys_and_figures():
     assert os.path.isfile(FANDISK), f"{FANDISK} is missing: run `make data`"
     fandisk = off_object(FANDISK)
-    file_vertices, _, _ = read_off(FANDISK)
+    file_vertices, _, _ = polycube.polycube_native.read_mesh(FANDISK)
     assert (len(fandisk.data.vertices), len(fandisk.data.polygons)) == (6475, 12946)
     labels = nearest_axis_labels(fandisk)
 

@@ -130,6 +130,27 @@ TEST(DeformFixed, SphereEllipsoidAndTorusBecomePolycubes) {
   }
 }
 
+// The default variant (issue 6's fold-free one) on the same shapes. The quad
+// torus above, 48 x 24, stays about 3.8 degrees off with it: quads bent across
+// a polycube edge (see deform.h); this finer one converges.
+TEST(DeformDefault, SphereEllipsoidAndTorusBecomePolycubes) {
+  const std::pair<std::string, PolygonMesh> shapes[] = {
+      {"sphere", test_meshes::uv_sphere(32, 16)},
+      {"ellipsoid", test_meshes::uv_sphere(32, 16, Eigen::Vector3d(1.5, 1.0, 0.7))},
+      {"torus 96x48", test_meshes::torus(96, 48)},
+  };
+  for (const auto& [name, mesh] : shapes) {
+    SCOPED_TRACE(name);
+    DeformOptions defaults;
+    defaults.iterations = 300;
+    const DeformResult r = deform(mesh, nearest_labels(mesh), defaults);
+    record(name + " default", r);
+    EXPECT_TRUE(r.converged);
+    EXPECT_LT(r.figures.normal_deviation_max_deg, 0.5);
+    EXPECT_EQ(r.figures.flipped_faces, 0);
+  }
+}
+
 TEST(DeformFixed, EllipsoidBecomesABoxOfItsProportions) {
   const PolygonMesh mesh = test_meshes::uv_sphere(32, 16, Eigen::Vector3d(1.5, 1.0, 0.7));
   const DeformResult r = deform(mesh, nearest_labels(mesh));
@@ -138,13 +159,13 @@ TEST(DeformFixed, EllipsoidBecomesABoxOfItsProportions) {
   EXPECT_GT(extent.y(), extent.z());
 }
 
-TEST(DeformFixed, B0WithItsPublishedLabelingBecomesAPolycube) {
+TEST(DeformDefault, B0WithItsPublishedLabelingBecomesAPolycube) {
   const std::string dir = std::string(POLYCUBE_SHARED_DATA) + "/B0";
   SKIP_UNLESS_EXISTS(dir + "/surface.obj");
   const PolygonMesh mesh = read_mesh(dir + "/surface.obj");
   const std::vector<int> labels = read_labels(dir + "/labeling.txt", mesh.faces.count());
   const DeformResult r = deform(mesh, labels);
-  record("B0 fixed", r);
+  record("B0 default", r);
   EXPECT_TRUE(r.converged);
   EXPECT_EQ(r.figures.flipped_faces, 0);
   EXPECT_LT(r.figures.normal_deviation_max_deg, 0.5);

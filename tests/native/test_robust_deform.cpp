@@ -3,11 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <Eigen/Geometry>
 #include <fstream>
 #include <functional>
 #include <set>
 
 #include "core/deform.h"
+#include "core/fitted_rotations.h"
+#include "core/fold_free_step.h"
 #include "core/nearest_labels.h"
 #include "core/triangulate.h"
 #include "io/deform_report.h"
@@ -208,6 +211,44 @@ TEST(Robust, NeverFoldsAFaceOnRealModels) {
     print(name, "robust", r);
     EXPECT_EQ(worst, 0);
   }
+}
+
+// The local step: input normal onto the axis, then the twist that fits the
+// current triangle best.
+TEST(Robust, FittedRotationTurnsTheInputNormalOntoTheAxisWithTheBestTwist) {
+  Vertices input(3, 3);
+  input << 0, 0, 0, 1, 0, 0, 0, 1, 0;  // normal +Z
+  Triangles triangle(1, 3);
+  triangle << 0, 1, 2;
+  const CotangentWeights weights = CotangentWeights::Constant(1, 3, 0.5);
+  // The current triangle: the input turned 30 degrees about Z and moved.
+  const Eigen::Matrix3d twist = Eigen::AngleAxisd(M_PI / 6, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const Vertices current = ((input * twist.transpose()).rowwise() + Eigen::RowVector3d(2, 3, 4)).eval();
+  const Rotations r = fitted_rotations(input, current, triangle, weights, {4});  // +Z
+  EXPECT_LT((r[0] - twist).norm(), 1e-12);
+  // Label -Y: the normal goes onto -Y, and the twist still fits the current shape.
+  const Rotations r2 = fitted_rotations(input, input, triangle, weights, {3});
+  EXPECT_LT((r2[0] * Eigen::Vector3d::UnitZ() - Eigen::Vector3d(0, -1, 0)).norm(), 1e-12);
+  EXPECT_NEAR(r2[0].determinant(), 1.0, 1e-12);
+}
+
+// The step control holds exactly the corners of the triangle a step would turn
+// over, and lets the others go the whole way.
+TEST(Robust, FoldFreeStepHoldsOnlyWhatWouldFold) {
+  Vertices from(6, 3);
+  from << 0, 0, 0, 1, 0, 0, 0, 1, 0, 5, 5, 0, 6, 5, 0, 5, 6, 0;
+  Triangles triangles(2, 3);
+  triangles << 0, 1, 2, 3, 4, 5;  // both face +Z
+  const FaceStateMeasure measure(from, triangles, {4, 4});
+  Vertices to = from;
+  to.row(2) << 0, -2, 0;  // turns triangle 0 over (half way too; a quarter is fine)
+  to.row(3) << 5, 4, 0;   // triangle 1 just stretches
+  const FoldFreeStep step = fold_free_step(from, measure.measure(from), to, triangles, measure);
+  EXPECT_EQ(step.states.flipped_count, 0);
+  EXPECT_TRUE(step.held[0]);
+  EXPECT_EQ(step.positions.row(3), to.row(3));
+  EXPECT_DOUBLE_EQ(step.positions(2, 1), 0.25);
+  EXPECT_EQ(step.limited, 3);
 }
 
 TEST(Robust, IsTheDefault) {

@@ -51,7 +51,7 @@ def test_input_arrays_are_not_changed_and_any_dtype_is_accepted(native, sphere):
 def test_variants_and_iteration_limit(native, sphere):
     vertices, indices, sizes = sphere
     labels = native.nearest_labels(vertices, indices, sizes)
-    for variant in ("fixed", "current"):
+    for variant in ("robust", "fixed", "current"):
         report = native.deform(vertices, indices, sizes, labels, iterations=4, tolerance=0,
                                variant=variant)["report"]
         assert report["variant"] == variant and report["iterations"] == 4

@@ -1,0 +1,30 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The labels a deformation uses: stored on the object, automatic, or both
+(DeformSettings.label_source)."""
+
+import numpy as np
+
+from .labels import Labels, read_labels
+from .polycube_native import auto_labels
+
+AUTOMATIC = "automatic"
+
+
+def labels_for_run(obj, mesh, source, compactness):
+    """Labels for `mesh` (the object's MeshArrays); ValueError if the stored ones are junk."""
+    if source == 'AUTO':
+        return Labels(_automatic(mesh, compactness), AUTOMATIC)
+    stored = read_labels(obj)
+    unlabelled = stored.values < 0
+    if source == 'STORED' or not unlabelled.any():
+        return stored
+    if unlabelled.all():
+        return Labels(_automatic(mesh, compactness), AUTOMATIC)
+    values = np.where(unlabelled, _automatic(mesh, compactness), stored.values).astype(np.int32)
+    return Labels(values, f"{stored.source}, automatic where unlabelled")
+
+
+def _automatic(mesh, compactness):
+    return np.asarray(auto_labels(mesh.vertices, mesh.face_indices, mesh.face_sizes,
+                                  compactness=compactness), dtype=np.int32)
+

@@ -1,0 +1,78 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Subdivide before deforming: a refined copy, the object `<name> polycube`.
+
+The user's object keeps its vertex count and its shape keys; the copy gets the
+refined mesh (OpenSubdiv, native `refine`), each child face keeping its parent's
+label (in the `polycube_label` attribute), material and smooth flag. Running
+again replaces the copy's mesh instead of making another copy.
+"""
+
+import bpy
+import numpy as np
+
+from .labels import Labels, write_label_attribute
+from .mesh_arrays import new_mesh, read_mesh_arrays
+from .polycube_native import refine
+
+COPY_SUFFIX = " polycube"
+SOURCE_PROPERTY = "polycube_subdivided_from"
+
+
+def source_object(obj):
+    """The object a subdivided copy was made from; the object itself otherwise."""
+    source = bpy.data.objects.get(obj.get(SOURCE_PROPERTY, ""))
+    return source if source is not None and source.type == 'MESH' and source != obj else obj
+
+
+def subdivided_copy(obj, mesh, labels, levels, scheme):
+    """(copy, its MeshArrays, its Labels) from the object's MeshArrays and Labels;
+    ValueError, with nothing created, if it cannot be made."""
+    name = obj.name + COPY_SUFFIX
+    copy = bpy.data.objects.get(name)
+    if copy is not None and copy.get(SOURCE_PROPERTY) != obj.name:
+        raise ValueError(f"an object named '{name}' exists already and is not its subdivided copy")
+    refined = refine(mesh.vertices, mesh.face_indices, mesh.face_sizes, labels.values,
+                     levels=levels, scheme=scheme.lower())
+    parents = np.asarray(refined["parent_face"])
+    data = new_mesh(name, refined["vertices"], refined["face_indices"], refined["face_sizes"])
+    try:
+        if len(data.polygons) != len(parents):
+            raise ValueError("its subdivision holds faces Blender cannot keep (degenerate faces)")
+        arrays = read_mesh_arrays(data)
+    except ValueError:
+        bpy.data.meshes.remove(data)
+        raise
+    _carry_face_flags(obj.data, data, parents)
+    values = np.asarray(refined["labels"], dtype=np.int32)
+    write_label_attribute(data, values)
+
+    if copy is None:
+        copy = bpy.data.objects.new(name, data)
+        for collection in obj.users_collection:
+            collection.objects.link(copy)
+        copy[SOURCE_PROPERTY] = obj.name
+    else:
+        old = copy.data
+        copy.data = data
+        if old.users == 0:
+            bpy.data.meshes.remove(old)
+    copy.matrix_world = obj.matrix_world
+    how = f"{scheme.lower()} x{levels}"
+    return copy, arrays, Labels(values, f"{labels.source}, subdivided ({how})")
+
+
+def remove_copy(copy):
+    """Take a copy made for a run that failed away again."""
+    data = copy.data
+    bpy.data.objects.remove(copy)
+    if data.users == 0:
+        bpy.data.meshes.remove(data)
+
+
+def _carry_face_flags(source, target, parents):
+    for material in source.materials:
+        target.materials.append(material)
+    for name, dtype in (("material_index", np.int32), ("use_smooth", bool)):
+        values = np.empty(len(source.polygons), dtype=dtype)
+        source.polygons.foreach_get(name, values)
+        target.polygons.foreach_set(name, values[parents])
