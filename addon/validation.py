@@ -75,10 +75,11 @@ def details(result):
     """One line per violation, for the info log."""
     lines = []
     for v in result["violations"]:
-        chart = f"chart {v['chart']} ({v['label_name']}, {len(v['faces'])} faces)"
+        chart = f"chart {v['chart']} ({v['label_name']}, {_count(len(v['faces']), 'face')})"
         others = ", ".join(str(other) for other in v["others"])
         if v["kind"] == "too_few_neighbours":
-            lines.append(f"{chart} touches {len(v['others'])} other charts ({others}); it needs four")
+            lines.append(f"{chart} touches {_count(len(v['others']), 'other chart')} ({others}); "
+                         f"it needs four")
         elif v["kind"] == "opposite_neighbours":
             lines.append(f"{chart} borders chart {others} of the opposite label")
         elif v["kind"] == "corner_too_many_charts":
@@ -86,3 +87,7 @@ def details(result):
         else:
             lines.append(f"{chart}: {v['kind']}")
     return lines
+
+
+def _count(number, noun):
+    return f"{number} {noun}{'' if number == 1 else 's'}"

@@ -8,7 +8,6 @@
 #include "core/check_input.h"
 #include "core/components.h"
 #include "core/cotangent_weights.h"
-#include "core/face_states.h"
 #include "core/fitted_rotations.h"
 #include "core/fold_free_step.h"
 #include "core/label_repair.h"
@@ -175,8 +174,7 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
     SparseCholesky current_factorization;
     bool current_analyzed = false;
 
-    FaceStateMeasure state_measure(mesh.vertices, triangles, triangle_labels);
-    FaceStates state = state_measure.measure(x);
+    FaceStates state = quality.face_states(x);
     const std::vector<std::vector<int>> adjacency = face_adjacency(triangulation, mesh.faces.count());
     std::vector<char> relabelled(mesh.faces.count(), 0);
     const double diagonal = (mesh.vertices.colwise().maxCoeff() - mesh.vertices.colwise().minCoeff()).norm();
@@ -184,7 +182,7 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
     // Fold-free steps (fold_free_step.h), put back on the components'
     // centroids, which per-vertex steps move a little.
     auto controlled_step = [&](const Vertices& target) {
-      FoldFreeStep step = fold_free_step(x, state, target, triangles, state_measure, kMaxHalvings);
+      FoldFreeStep step = fold_free_step(x, state, target, triangles, quality, kMaxHalvings);
       const Eigen::MatrixX3d drift = component_centroids(step.positions, parts) - centroids;
       for (int v = 0; v < n; ++v)
         if (parts.of_vertex[v] >= 0) step.positions.row(v) -= drift.row(parts.of_vertex[v]);
@@ -249,9 +247,8 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
           for (int f : changed) relabelled[f] = 1;
           for (size_t t = 0; t < triangle_labels.size(); ++t)
             triangle_labels[t] = result.labels[triangulation.face_of_triangle[t]];
-          quality = QualityMeasure(mesh.vertices, triangles, triangle_labels);
-          state_measure.set_labels(triangle_labels);
-          state = state_measure.measure(x);
+          quality.set_labels(triangle_labels);
+          state = quality.face_states(x);
           best_max = state.max_deviation_deg;
         }
       }
@@ -285,7 +282,7 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
 
   // The faces that did not make it, by polygon id.
   {
-    const FaceStates state = FaceStateMeasure(mesh.vertices, triangles, triangle_labels).measure(x);
+    const FaceStates state = quality.face_states(x);
     std::vector<char> unconverged(mesh.faces.count(), 0), flipped(mesh.faces.count(), 0);
     for (size_t t = 0; t < state.flipped.size(); ++t) {
       const int f = triangulation.face_of_triangle[t];

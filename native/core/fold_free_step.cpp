@@ -13,7 +13,7 @@ constexpr int kMaxHoldRounds = 10;
 }  // namespace
 
 FoldFreeStep fold_free_step(const Vertices& from, const FaceStates& from_states, const Vertices& to,
-                            const Triangles& triangles, const FaceStateMeasure& measure, int max_halvings) {
+                            const Triangles& triangles, const QualityMeasure& measure, int max_halvings) {
   const Eigen::Index n = from.rows();
   std::vector<double> alpha(n, 1.0);
   FoldFreeStep step;
@@ -21,7 +21,7 @@ FoldFreeStep fold_free_step(const Vertices& from, const FaceStates& from_states,
   step.held.assign(triangles.rows(), 0);
   for (int round = 0;; ++round) {
     for (Eigen::Index v = 0; v < n; ++v) step.positions.row(v) = from.row(v) + alpha[v] * (to.row(v) - from.row(v));
-    step.states = measure.measure(step.positions);
+    step.states = measure.face_states(step.positions);
     bool folds = false;
     for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
       if (!step.states.flipped[t] || from_states.flipped[t]) continue;
@@ -43,7 +43,7 @@ FoldFreeStep fold_free_step(const Vertices& from, const FaceStates& from_states,
       step.states = from_states;
       for (double fraction = 0.5; fraction > 0x1p-10; fraction *= 0.5) {
         const Vertices trial = from + fraction * (to - from);
-        const FaceStates states = measure.measure(trial);
+        const FaceStates states = measure.face_states(trial);
         bool trial_folds = false;
         for (Eigen::Index t = 0; t < triangles.rows() && !trial_folds; ++t)
           trial_folds = states.flipped[t] && !from_states.flipped[t];

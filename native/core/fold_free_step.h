@@ -16,7 +16,7 @@
 
 #include <vector>
 
-#include "core/face_states.h"
+#include "core/quality.h"
 
 namespace polycube {
 
@@ -30,6 +30,6 @@ struct FoldFreeStep {
 // From `from` (whose states are `from_states`) towards `to`. Triangles turned
 // over in `from` may stay so (they are not new folds).
 FoldFreeStep fold_free_step(const Vertices& from, const FaceStates& from_states, const Vertices& to,
-                            const Triangles& triangles, const FaceStateMeasure& measure, int max_halvings = 6);
+                            const Triangles& triangles, const QualityMeasure& measure, int max_halvings = 6);
 
 }  // namespace polycube

@@ -16,7 +16,7 @@
 
 #include <vector>
 
-#include "core/face_states.h"
+#include "core/quality.h"
 #include "core/triangulate.h"
 
 namespace polycube {

@@ -12,21 +12,20 @@ namespace {
 
 constexpr double kDegreesPerRadian = 180.0 / M_PI;
 
-Eigen::Vector3d triangle_normal(const Vertices& v, const Triangles& t, Eigen::Index f) {
+Eigen::Vector3d doubled_normal(const Vertices& v, const Triangles& t, Eigen::Index f) {
   const Eigen::Vector3d a = v.row(t(f, 0)), b = v.row(t(f, 1)), c = v.row(t(f, 2));
   return (b - a).cross(c - a);
-}
-
-double angle_deg(const Eigen::Vector3d& unit, const Eigen::Vector3d& axis) {
-  // atan2 of |cross| and dot keeps small angles accurate (acos loses them).
-  return std::atan2(unit.cross(axis).norm(), unit.dot(axis)) * kDegreesPerRadian;
 }
 
 }  // namespace
 
 QualityMeasure::QualityMeasure(const Vertices& input, const Triangles& triangles,
                                std::vector<int> triangle_labels)
-    : triangles_(triangles), labels_(std::move(triangle_labels)), input_areas_(areas(input)) {
+    : triangles_(triangles), labels_(std::move(triangle_labels)), input_area_(triangles.rows()) {
+  for (Eigen::Index f = 0; f < triangles.rows(); ++f) {
+    input_area_[f] = 0.5 * doubled_normal(input, triangles, f).norm();
+    input_total_ += input_area_[f];
+  }
   edges_.reserve(3 * static_cast<size_t>(triangles.rows()));
   for (Eigen::Index f = 0; f < triangles.rows(); ++f)
     for (int k = 0; k < 3; ++k) {
@@ -40,54 +39,72 @@ QualityMeasure::QualityMeasure(const Vertices& input, const Triangles& triangles
     input_lengths_[e] = (input.row(edges_[e].first) - input.row(edges_[e].second)).norm();
 }
 
-QualityMeasure::Areas QualityMeasure::areas(const Vertices& v) const {
-  Areas result;
-  result.area.resize(triangles_.rows());
+FaceStates QualityMeasure::face_states(const Vertices& output) const {
+  const Eigen::Index count = triangles_.rows();
+  const int threads = parallel_threads(count);
+  FaceStates s;
+  s.area.resize(count);
+  s.deviation_deg.assign(count, 0.0);
+  s.collapsed.assign(count, 0);
+  s.flipped.assign(count, 0);
   double total = 0.0;
-#pragma omp parallel for num_threads(parallel_threads(triangles_.rows())) reduction(+ : total)
-  for (Eigen::Index f = 0; f < triangles_.rows(); ++f) {
-    result.area[f] = 0.5 * triangle_normal(v, triangles_, f).norm();
-    total += result.area[f];
+#pragma omp parallel for num_threads(threads) reduction(+ : total)
+  for (Eigen::Index f = 0; f < count; ++f) {
+    s.area[f] = 0.5 * doubled_normal(output, triangles_, f).norm();
+    total += s.area[f];
   }
-  result.total = total;
-  return result;
+  s.scale2 = input_total_ > 0.0 && total > 0.0 ? total / input_total_ : 1.0;
+  int flipped = 0;
+  double max_deviation = 0.0;
+#pragma omp parallel for num_threads(threads) reduction(+ : flipped) reduction(max : max_deviation)
+  for (Eigen::Index f = 0; f < count; ++f) {
+    const double area = s.area[f];
+    if (area <= kCollapsedAreaRatio * s.scale2 * input_area_[f] || area == 0.0) {
+      s.collapsed[f] = 1;
+      continue;
+    }
+    const Eigen::Vector3d unit = doubled_normal(output, triangles_, f) / (2.0 * area);
+    const Eigen::Vector3d axis = label_axis(labels_[f]);
+    // atan2 of |cross| and dot keeps small angles accurate (acos loses them).
+    s.deviation_deg[f] = std::atan2(unit.cross(axis).norm(), unit.dot(axis)) * kDegreesPerRadian;
+    max_deviation = std::max(max_deviation, s.deviation_deg[f]);
+    if (unit.dot(axis) < 0.0) {
+      s.flipped[f] = 1;
+      ++flipped;
+    }
+  }
+  s.flipped_count = flipped;
+  s.max_deviation_deg = max_deviation;
+  return s;
 }
 
 Figures QualityMeasure::measure(const Vertices& output) const {
+  const FaceStates s = face_states(output);
   Figures figures;
-  const Areas out = areas(output);
-  const double scale2 = input_areas_.total > 0.0 && out.total > 0.0 ? out.total / input_areas_.total : 1.0;
-  const double scale = std::sqrt(scale2);
-
-  double weighted_deviation = 0.0, counted_area = 0.0, area_error = 0.0, max_deviation = 0.0;
-  int area_count = 0, collapsed = 0, flipped = 0;
-#pragma omp parallel for num_threads(parallel_threads(triangles_.rows())) \
-    reduction(+ : weighted_deviation, counted_area, area_error, area_count, collapsed, flipped) \
-    reduction(max : max_deviation)
-  for (Eigen::Index f = 0; f < triangles_.rows(); ++f) {
-    const double a_in = input_areas_.area[f], a_out = out.area[f];
-    if (a_in > 0.0) {
-      area_error += std::abs(a_out / (scale2 * a_in) - 1.0);
+  figures.normal_deviation_max_deg = s.max_deviation_deg;
+  figures.flipped_faces = s.flipped_count;
+  const Eigen::Index count = triangles_.rows();
+  double weighted_deviation = 0.0, counted_area = 0.0, area_error = 0.0;
+  int area_count = 0, collapsed = 0;
+#pragma omp parallel for num_threads(parallel_threads(count)) \
+    reduction(+ : weighted_deviation, counted_area, area_error, area_count, collapsed)
+  for (Eigen::Index f = 0; f < count; ++f) {
+    if (input_area_[f] > 0.0) {
+      area_error += std::abs(s.area[f] / (s.scale2 * input_area_[f]) - 1.0);
       ++area_count;
     }
-    if (a_out <= kCollapsedAreaRatio * scale2 * a_in || a_out == 0.0) {
+    if (s.collapsed[f]) {
       ++collapsed;
       continue;
     }
-    const Eigen::Vector3d unit = triangle_normal(output, triangles_, f) / (2.0 * a_out);
-    const Eigen::Vector3d axis = label_axis(labels_[f]);
-    const double deviation = angle_deg(unit, axis);
-    max_deviation = std::max(max_deviation, deviation);
-    weighted_deviation += a_out * deviation;
-    counted_area += a_out;
-    if (unit.dot(axis) < 0.0) ++flipped;
+    weighted_deviation += s.area[f] * s.deviation_deg[f];
+    counted_area += s.area[f];
   }
-  figures.normal_deviation_max_deg = max_deviation;
   figures.collapsed_faces = collapsed;
-  figures.flipped_faces = flipped;
   figures.normal_deviation_mean_deg = counted_area > 0.0 ? weighted_deviation / counted_area : 0.0;
   figures.area_error = area_count > 0 ? area_error / area_count : 0.0;
 
+  const double scale = std::sqrt(s.scale2);
   double edge_error = 0.0;
   long edge_count = 0;
   const long edges = static_cast<long>(edges_.size());

@@ -1,5 +1,5 @@
 // The quality figures of DESIGN.md section 4, the same definitions for the
-// stopping rule, the tests, the benchmark and the Blender panel.
+// stopping rule, the step control, the tests, the benchmark and the panel.
 //
 // With s = sqrt(area_out / area_in), so that uniform scale is not error:
 // - collapsed: output area below 1e-3 s^2 times the triangle's input area
@@ -31,24 +31,35 @@ struct Figures {
   int collapsed_faces = 0;
 };
 
+// The same definitions per triangle: which faces a step folds (the robust
+// variant's step control) and which did not converge.
+struct FaceStates {
+  std::vector<double> area;           // output area
+  std::vector<double> deviation_deg;  // 0 for collapsed triangles (their normal is noise)
+  std::vector<char> collapsed;
+  std::vector<char> flipped;          // non-collapsed, normal . axis < 0
+  double scale2 = 1.0;                // s^2
+  int flipped_count = 0;
+  double max_deviation_deg = 0.0;
+};
+
 // Keeps what does not change between iterations (input areas, the edge list
 // and input lengths) so each measurement costs one pass over the mesh.
 class QualityMeasure {
  public:
   QualityMeasure(const Vertices& input, const Triangles& triangles, std::vector<int> triangle_labels);
 
+  FaceStates face_states(const Vertices& output) const;
   Figures measure(const Vertices& output) const;
 
- private:
-  struct Areas {
-    std::vector<double> area;
-    double total = 0.0;
-  };
-  Areas areas(const Vertices& v) const;
+  // Labels changed by a repair: the input's measurements stay.
+  void set_labels(std::vector<int> triangle_labels) { labels_ = std::move(triangle_labels); }
 
+ private:
   Triangles triangles_;
   std::vector<int> labels_;
-  Areas input_areas_;
+  std::vector<double> input_area_;
+  double input_total_ = 0.0;
   std::vector<std::pair<int, int>> edges_;
   std::vector<double> input_lengths_;
 };

@@ -153,13 +153,14 @@ def test_validation_selects_exactly_the_offending_faces():
 
 def test_validation_of_good_labels_selects_nothing_and_goes_stale_when_they_change():
     cube = _cube_with_nine_faces_a_side()
-    add_attribute(cube.data, "polycube_label", 'INT', nearest_axis_labels(cube).astype(np.int32))
+    labels = nearest_axis_labels(cube).astype(np.int32)
+    add_attribute(cube.data, "polycube_label", 'INT', labels)
     select_only(cube)
     assert bpy.ops.object.polycube_validate_labels() == {'FINISHED'}
     assert cube.mode == 'OBJECT'
     validation = load_validation(cube, label_summary(cube).digest)
     assert (validation["valid"], validation["charts"], validation["corners"]) == (1, 6, 8), validation
-    cube.data.attributes["polycube_label"].data[0].value = 1
+    cube.data.attributes["polycube_label"].data[0].value = (labels[0] + 2) % 6
     bpy.context.view_layer.update()
     assert load_validation(cube, label_summary(cube).digest) is None  # the sidebar says: not validated
 

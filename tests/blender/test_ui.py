@@ -138,8 +138,16 @@ def test_long_run_keeps_blender_responsive_and_esc_keeps_iterations():
 
 def test_panel_shows_the_last_run_and_screenshot():
     sphere = labelled_sphere("Shown sphere")
+    for obj in bpy.context.scene.objects:  # the earlier tests' spheres are in the same place
+        obj.hide_set(obj.type == 'MESH' and obj != sphere)
+    select_only(sphere)
     with _override():
+        # Labels, their validation and colours too, so the screenshot shows the whole panel.
+        assert bpy.ops.object.polycube_auto_label() == {'FINISHED'}
+        assert bpy.ops.object.polycube_label_colours() == {'FINISHED'}
         bpy.ops.object.polycube_deform(iterations=200, animate=True)
+    assert _view3d()[1].spaces.active.shading.color_type == 'VERTEX'
+    assert sphere.data.color_attributes.active_color.name == "polycube_label_colour"
     panel_draws.clear()
     _redraw()
     yield from _wait_until(lambda: ("Shown sphere", True) in panel_draws, "the panel with a report")

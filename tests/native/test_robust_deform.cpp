@@ -239,11 +239,11 @@ TEST(Robust, FoldFreeStepHoldsOnlyWhatWouldFold) {
   from << 0, 0, 0, 1, 0, 0, 0, 1, 0, 5, 5, 0, 6, 5, 0, 5, 6, 0;
   Triangles triangles(2, 3);
   triangles << 0, 1, 2, 3, 4, 5;  // both face +Z
-  const FaceStateMeasure measure(from, triangles, {4, 4});
+  const QualityMeasure measure(from, triangles, {4, 4});
   Vertices to = from;
   to.row(2) << 0, -2, 0;  // turns triangle 0 over (half way too; a quarter is fine)
   to.row(3) << 5, 4, 0;   // triangle 1 just stretches
-  const FoldFreeStep step = fold_free_step(from, measure.measure(from), to, triangles, measure);
+  const FoldFreeStep step = fold_free_step(from, measure.face_states(from), to, triangles, measure);
   EXPECT_EQ(step.states.flipped_count, 0);
   EXPECT_TRUE(step.held[0]);
   EXPECT_EQ(step.positions.row(3), to.row(3));
