@@ -58,24 +58,28 @@ FaceStates QualityMeasure::face_states(const Vertices& output) const {
   double max_deviation = 0.0;
 #pragma omp parallel for num_threads(threads) reduction(+ : flipped) reduction(max : max_deviation)
   for (Eigen::Index f = 0; f < count; ++f) {
-    const double area = s.area[f];
-    if (area <= kCollapsedAreaRatio * s.scale2 * input_area_[f] || area == 0.0) {
-      s.collapsed[f] = 1;
-      continue;
-    }
-    const Eigen::Vector3d unit = doubled_normal(output, triangles_, f) / (2.0 * area);
-    const Eigen::Vector3d axis = label_axis(labels_[f]);
-    // atan2 of |cross| and dot keeps small angles accurate (acos loses them).
-    s.deviation_deg[f] = std::atan2(unit.cross(axis).norm(), unit.dot(axis)) * kDegreesPerRadian;
+    update_face_state(output, f, s);
+    flipped += s.flipped[f];
     max_deviation = std::max(max_deviation, s.deviation_deg[f]);
-    if (unit.dot(axis) < 0.0) {
-      s.flipped[f] = 1;
-      ++flipped;
-    }
   }
   s.flipped_count = flipped;
   s.max_deviation_deg = max_deviation;
   return s;
+}
+
+void QualityMeasure::update_face_state(const Vertices& output, Eigen::Index f, FaceStates& s) const {
+  const Eigen::Vector3d normal = doubled_normal(output, triangles_, f);
+  const double area = 0.5 * normal.norm();
+  s.area[f] = area;
+  s.collapsed[f] = area <= kCollapsedAreaRatio * s.scale2 * input_area_[f] || area == 0.0;
+  s.flipped[f] = 0;
+  s.deviation_deg[f] = 0.0;
+  if (s.collapsed[f]) return;
+  const Eigen::Vector3d unit = normal / (2.0 * area);
+  const Eigen::Vector3d axis = label_axis(labels_[f]);
+  // atan2 of |cross| and dot keeps small angles accurate (acos loses them).
+  s.deviation_deg[f] = std::atan2(unit.cross(axis).norm(), unit.dot(axis)) * kDegreesPerRadian;
+  s.flipped[f] = unit.dot(axis) < 0.0;
 }
 
 Figures QualityMeasure::measure(const Vertices& output) const {

@@ -50,6 +50,10 @@ class QualityMeasure {
   QualityMeasure(const Vertices& input, const Triangles& triangles, std::vector<int> triangle_labels);
 
   FaceStates face_states(const Vertices& output) const;
+  // Re-evaluates triangle f of `states` for new positions, keeping its scale:
+  // for local changes, where a full pass per change would cost O(mesh).
+  // flipped_count and max_deviation_deg are not updated.
+  void update_face_state(const Vertices& output, Eigen::Index f, FaceStates& states) const;
   Figures measure(const Vertices& output) const;
 
   // Labels changed by a repair: the input's measurements stay.
