@@ -71,7 +71,10 @@ in Blender 3.x, face maps +X ... -Z"""
             in_user_maps = write_face_maps(obj, labels) if hasattr(obj, "face_maps") else 0
             if colours_shown(obj.data):
                 colour_faces(obj.data, labels)
-            self.report({'INFO'}, summary(obj.name, validate(obj, mesh, labels)))
+            result = validate(obj, mesh, labels)
+            for problem in result["orientation"]:
+                self.report({'WARNING'}, f"'{obj.name}': {problem}.")
+            self.report({'INFO'}, summary(obj.name, result))
             if in_user_maps:
                 self.report({'INFO'}, f"'{obj.name}': {in_user_maps} faces stay in your own face maps; "
                                       f"the polycube_label attribute holds their labels.")
@@ -110,10 +113,12 @@ of every violation in Edit Mode"""
                 bpy.ops.object.mode_set(mode='EDIT')
             self.report({'ERROR'}, failure(obj.name, "validated", error))
             return {'CANCELLED'}
+        for problem in result["orientation"]:
+            self.report({'WARNING'}, f"'{obj.name}': {problem}.")
         if result["valid"]:
             if was_editing:
                 bpy.ops.object.mode_set(mode='EDIT')
-            self.report({'INFO'}, summary(obj.name, result))
+            self.report({'WARNING'} if result["orientation"] else {'INFO'}, summary(obj.name, result))
             return {'FINISHED'}
         lines = details(result)
         for line in lines[:_DETAILS_SHOWN]:

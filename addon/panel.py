@@ -15,13 +15,7 @@ from .report import load_report, outcome
 from .scrub import shown_iteration
 from .shape_keys import polycube_keys
 from .unconverged import OBJECT_OT_polycube_select_unconverged, unconverged_count
-from .validation import load_validation
-
-_KIND_NAMES = {
-    "too_few_neighbours": "Fewer than 4 neighbours",
-    "opposite_neighbours": "Opposite neighbours",
-    "corner_too_many_charts": "Corners of 4+ charts",
-}
+from .validation import KIND_NAMES, load_validation
 
 
 class VIEW3D_PT_polycube(bpy.types.Panel):
@@ -80,11 +74,11 @@ def _draw_labels(layout, obj, settings):
     row = layout.row(align=True)
     button = row.operator(OBJECT_OT_polycube_auto_label.bl_idname, icon='SHADERFX')
     button.compactness = settings.compactness
-    row.operator(OBJECT_OT_polycube_validate_labels.bl_idname, icon='CHECKMARK')
+    row.operator(OBJECT_OT_polycube_validate_labels.bl_idname, icon='CHECKMARK', text="Validate")
     row = layout.row(align=True)
     shown = colours_shown(obj.data)
     row.operator(OBJECT_OT_polycube_label_colours.bl_idname, icon='COLOR',
-                 text="Refresh Colours" if shown else "Show Colours").show = True
+                 text="Refresh" if shown else "Show Colours").show = True
     if shown:
         row.operator(OBJECT_OT_polycube_label_colours.bl_idname, icon='X', text="Hide").show = False
 
@@ -97,13 +91,11 @@ def _draw_validation(layout, validation):
         layout.label(text="Valid polycube labels", icon='CHECKMARK')
     else:
         layout.label(text=f"{validation['violations']} violations", icon='ERROR')
-    column = layout.column(align=True)
+    for problem in validation.get("orientation", ()):
+        layout.label(text=problem, icon='ERROR')
     rows = [("Charts", validation["charts"]), ("Corners", validation["corners"])]
-    rows += [(_KIND_NAMES.get(kind, kind), count) for kind, count in validation["kinds"].items()]
-    for name, value in rows:
-        split = column.split(factor=0.6)
-        split.label(text=name)
-        split.label(text=str(value))
+    rows += [(KIND_NAMES.get(kind, kind), count) for kind, count in validation["kinds"].items()]
+    _draw_rows(layout, rows)
 
 
 def _draw_report(layout, report):
@@ -127,13 +119,20 @@ def _draw_report(layout, report):
     unconverged = unconverged_count(report)
     if unconverged is not None:
         rows += (("Unconverged faces", str(unconverged)),)
+    if report.get("relabelled_faces_count"):
+        rows += (("Relabelled faces", str(report["relabelled_faces_count"])),)
+    _draw_rows(layout, rows)
+    if unconverged:
+        layout.operator(OBJECT_OT_polycube_select_unconverged.bl_idname, icon='RESTRICT_SELECT_OFF')
+
+
+def _draw_rows(layout, rows):
+    """(name, value) pairs as a two-column table."""
     column = layout.column(align=True)
     for name, value in rows:
         split = column.split(factor=0.6)
         split.label(text=name)
-        split.label(text=value)
-    if unconverged:
-        layout.operator(OBJECT_OT_polycube_select_unconverged.bl_idname, icon='RESTRICT_SELECT_OFF')
+        split.label(text=str(value))
 
 
 def _draw_scrub(layout, obj):

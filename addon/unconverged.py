@@ -41,7 +41,11 @@ class OBJECT_OT_polycube_select_unconverged(bpy.types.Operator):
             self.report({'ERROR'}, f"'{obj.name}' has changed since it was deformed: deform it again.")
             return {'CANCELLED'}
         select_faces_in_edit_mode(context, obj, faces)
-        flipped = load_report(obj).get("flipped_face_ids_count")
+        report = load_report(obj)
+        flipped = report.get("flipped_face_ids_count")
         among = f" ({flipped} of them flipped)" if flipped is not None else ""
-        self.report({'INFO'}, f"'{obj.name}': {len(faces)} faces above the tolerance selected{among}.")
+        # The solver lists a limited number of faces; the count is exact.
+        count = unconverged_count(report)
+        listed = f"the {len(faces)} it lists of " if len(faces) < count else ""
+        self.report({'INFO'}, f"'{obj.name}': selected {listed}{count} faces above the tolerance{among}.")
         return {'FINISHED'}

@@ -11,11 +11,16 @@ import hashlib
 
 import numpy as np
 
-from .polycube_native import validate_labels
+from .polycube_native import orientation, validate_labels
 
 VALIDATION_PROPERTY = "polycube_validation"
 
-# Per violation kind: (one, several) for the summary sentence.
+# Per violation kind: a short name (sidebar), and (one, several) for the summary sentence.
+KIND_NAMES = {
+    "too_few_neighbours": "Fewer than 4 neighbours",
+    "opposite_neighbours": "Opposite neighbours",
+    "corner_too_many_charts": "Corners of 4+ charts",
+}
 _KIND_WORDS = {
     "too_few_neighbours": ("chart touches fewer than four others",
                            "charts touch fewer than four others"),
@@ -32,16 +37,41 @@ def labels_digest(values):
 
 
 def validate(obj, mesh, values):
-    """The validator's answer for labels `values` of MeshArrays `mesh`; kept on the object."""
+    """The validator's answer for labels `values` of MeshArrays `mesh`, with the
+    winding's problems as sentences under "orientation"; its figures kept on the object."""
     result = validate_labels(mesh.vertices, mesh.face_indices, mesh.face_sizes, values)
-    kinds = {}
-    for violation in result["violations"]:
-        kinds[violation["kind"]] = kinds.get(violation["kind"], 0) + 1
+    problems = _orientation_problems(orientation(mesh.vertices, mesh.face_indices, mesh.face_sizes, values))
+    result["orientation"] = [sentence for _, sentence in problems]
     obj[VALIDATION_PROPERTY] = dict(
         digest=labels_digest(values), valid=int(result["valid"]), charts=result["charts"],
         boundaries=result["boundaries"], corners=result["corners"],
-        unlabelled_faces=result["unlabelled_faces"], violations=len(result["violations"]), kinds=kinds)
+        unlabelled_faces=result["unlabelled_faces"], violations=len(result["violations"]),
+        kinds=_kind_counts(result), orientation=[short for short, _ in problems])
     return result
+
+
+def _orientation_problems(found):
+    """Labels mean something against outward normals only: what stands in the way,
+    as (a few words for the sidebar, a sentence for the info log)."""
+    problems = []
+    if not found["orientable"]:
+        problems.append(("Not orientable",
+                         "the mesh is not orientable, so some faces face inward whatever is done"))
+    elif not found["consistent"]:
+        problems.append(("Inconsistent winding",
+                         f"neighbouring faces are wound in opposite directions along "
+                         f"{_count(found['inconsistent_edges'], 'edge')} "
+                         f"(Mesh > Normals > Recalculate Outside)"))
+    if found["inward_components"]:
+        parts = found["inward_components"]
+        problems.append(("Wound inward",
+                         f"{_count(parts, 'closed part')} of the mesh {'is' if parts == 1 else 'are'} "
+                         f"wound inward (Mesh > Normals > Recalculate Outside)"))
+    if found.get("labels_opposite"):
+        problems.append(("Labels for the opposite winding",
+                         f"{found['area_against_labels']:.0%} of the area faces away from its label: "
+                         f"the labels look made for the opposite winding"))
+    return problems
 
 
 def load_validation(obj, digest):
@@ -62,11 +92,10 @@ def summary(name, result, faces_selected=None):
     """One sentence on the labels of object `name`."""
     figures = f"{result['charts']} charts, {result['corners']} corners"
     if result["valid"]:
-        return f"'{name}': the labels are a valid polycube ({figures})."
-    counts = {}
-    for violation in result["violations"]:
-        counts[violation["kind"]] = counts.get(violation["kind"], 0) + 1
-    parts = [f"{count} {_KIND_WORDS.get(kind, (kind, kind))[count > 1]}" for kind, count in counts.items()]
+        winding = " but the winding is not outward everywhere (see the info log)" if result.get("orientation") else ""
+        return f"'{name}': the labels are a valid polycube ({figures}){winding}."
+    parts = [f"{count} {_KIND_WORDS.get(kind, (kind, kind))[count > 1]}"
+             for kind, count in _kind_counts(result).items()]
     selected = f", {faces_selected} faces selected" if faces_selected is not None else ""
     return f"'{name}': the labels are not a valid polycube: {', '.join(parts)} ({figures}{selected})."
 
@@ -87,6 +116,13 @@ def details(result):
         else:
             lines.append(f"{chart}: {v['kind']}")
     return lines
+
+
+def _kind_counts(result):
+    counts = {}
+    for violation in result["violations"]:
+        counts[violation["kind"]] = counts.get(violation["kind"], 0) + 1
+    return counts
 
 
 def _count(number, noun):

@@ -81,9 +81,8 @@ bool converged(const Figures& figures, double tolerance_deg, Eigen::Index triang
 }  // namespace
 
 Variant parse_variant(const std::string& name) {
-  if (name == "robust") return Variant::kRobust;
-  if (name == "fixed") return Variant::kFixed;
-  if (name == "current") return Variant::kCurrent;
+  for (Variant variant : kVariants)
+    if (name == variant_name(variant)) return variant;
   throw Error("unknown variant '" + name + "': use 'robust', 'fixed' or 'current'");
 }
 

@@ -59,6 +59,7 @@ enum class Variant {
   kRobust,   // fold-free: input-shape fitting, then the paper's step under a step control
 };
 
+constexpr Variant kVariants[] = {Variant::kRobust, Variant::kFixed, Variant::kCurrent};
 Variant parse_variant(const std::string& name);  // "robust" | "fixed" | "current", else Error
 const char* variant_name(Variant variant);
 

@@ -224,6 +224,13 @@ PYBIND11_MODULE(polycube_native, m) {
   m.doc() = "Polycube deformation (Zhao et al.): the native solver of the polycube Blender add-on.";
   py::register_exception<Error>(m, "Error", PyExc_ValueError);
   m.attr("LABEL_NAMES") = py::make_tuple("+X", "-X", "+Y", "-Y", "+Z", "-Z");
+  // What the solver offers, for user interfaces: variants (default first) and
+  // the labeller's default compactness.
+  py::list variants;
+  for (Variant variant : kVariants) variants.append(variant_name(variant));
+  m.attr("VARIANTS") = py::tuple(variants);
+  m.attr("DEFAULT_VARIANT") = variant_name(DeformOptions{}.variant);
+  m.attr("DEFAULT_COMPACTNESS") = AutoLabelOptions{}.compactness;
 
   m.def("deform", &deform_py, py::arg("vertices"), py::arg("face_indices"), py::arg("face_sizes"),
         py::arg("labels"), py::kw_only(), py::arg("iterations") = 100, py::arg("tolerance") = 0.5,

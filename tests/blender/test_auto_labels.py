@@ -165,6 +165,30 @@ def test_validation_of_good_labels_selects_nothing_and_goes_stale_when_they_chan
     assert load_validation(cube, label_summary(cube).digest) is None  # the sidebar says: not validated
 
 
+def test_validation_names_an_inward_wound_mesh_and_labels_for_the_other_winding():
+    sphere = uv_sphere()
+    outward = nearest_axis_labels(sphere).astype(np.int32)
+    select_only(sphere)
+    bpy.ops.object.mode_set(mode='EDIT')
+    bpy.ops.mesh.select_all(action='SELECT')
+    bpy.ops.mesh.flip_normals()
+    bpy.ops.object.mode_set(mode='OBJECT')
+    add_attribute(sphere.data, "polycube_label", 'INT', outward)
+    assert bpy.ops.object.polycube_validate_labels() == {'FINISHED'}
+    validation = load_validation(sphere, label_summary(sphere).digest)
+    assert validation["valid"] == 1, validation  # the charts themselves are fine
+    assert validation["orientation"] == ["Wound inward", "Labels for the opposite winding"], validation
+    # Labels made for this winding (auto labels follow the normals): only the winding is named.
+    _auto_label(sphere)
+    validation = load_validation(sphere, label_summary(sphere).digest)
+    assert validation["orientation"] == ["Wound inward"], validation
+    cube = _cube_with_nine_faces_a_side()
+    add_attribute(cube.data, "polycube_label", 'INT', nearest_axis_labels(cube).astype(np.int32))
+    select_only(cube)
+    bpy.ops.object.polycube_validate_labels()
+    assert load_validation(cube, label_summary(cube).digest)["orientation"] == []
+
+
 def test_validation_from_edit_mode_and_its_undo():
     cube = _cube_with_nine_faces_a_side()
     labels = nearest_axis_labels(cube)

@@ -169,6 +169,28 @@ def test_ply_and_stl_inputs():
         assert figures["converged"] is True and figures["flipped_faces"] == 0, (extension, figures)
 
 
+def test_automatic_labels_and_subdivide_before():
+    bpy.ops.mesh.primitive_cube_add()
+    cube = arrays(bpy.context.active_object)
+    off, out, js = (os.path.join(TMP, name) for name in ("box.off", "box.blend", "box.json"))
+    _write_off(off, cube)
+    done = _headless("--input", off, "--labels", "auto", "--subdivide", "2", "--scheme", "catmark",
+                     "--iterations", "200", "--output", out, "--report", js)
+    assert done.returncode == 0, done.stderr
+    with open(js) as file:
+        figures = json.load(file)
+    assert list(figures) == ["box polycube"], list(figures)
+    result = figures["box polycube"]
+    assert result["faces"] == 6 * 4 ** 2 and result["subdivided_from"] == "box"
+    assert result["label_source"] == "attribute polycube_label, subdivided (catmark x2)"
+    assert result["converged"] is True and result["flipped_faces"] == 0, result
+    saved = _saved_objects(out)
+    assert len(saved["box"].data.vertices) == 8 and _key_names(saved["box"]) == []
+    # The automatic labels were written to the input object, as the Auto Label operator does.
+    assert "polycube_label" in saved["box"].data.attributes and len(saved["box"].face_maps) == 6
+    assert len(_key_names(saved["box polycube"])) == result["iterations"] + 1
+
+
 def test_blend_input_deforms_only_the_named_objects():
     labelled_sphere("Ball")
     labelled_sphere("Other", location=(4, 0, 0))

@@ -147,3 +147,9 @@ def test_fandisk_both_variants_finite(native, real_mesh):
         result = native.deform(vertices, indices, sizes, labels, iterations=30, variant=variant)
         assert np.isfinite(result["positions"]).all()
         assert result["report"]["triangles"] == 12946
+
+
+def test_variants_and_defaults_are_published(native):
+    assert native.VARIANTS[0] == native.DEFAULT_VARIANT == "robust"
+    assert set(native.VARIANTS) == {"robust", "fixed", "current"}
+    assert 0 < native.DEFAULT_COMPACTNESS
