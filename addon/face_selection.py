@@ -7,6 +7,18 @@ import numpy as np
 from .mesh_arrays import face_of_corner
 
 
+def poll_mesh_to_select_in(cls, context, obj):
+    """Shared poll of the operators that end in Edit Mode with faces selected:
+    `obj` is a mesh and Blender is in Object or Edit Mode."""
+    if obj is None or obj.type != 'MESH':
+        cls.poll_message_set("Make a mesh object active")
+        return False
+    if context.mode not in {'OBJECT', 'EDIT_MESH'}:
+        cls.poll_message_set("Switch to Object Mode or Edit Mode first")
+        return False
+    return True
+
+
 def select_faces_in_edit_mode(context, obj, faces):
     """Make `obj` the only selected object and enter Edit Mode, face select, with
     `faces` (ids) selected and nothing else. Call in Object Mode."""

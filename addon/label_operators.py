@@ -9,7 +9,7 @@ import bpy
 import numpy as np
 from bpy.props import BoolProperty
 
-from .face_selection import select_faces_in_edit_mode
+from .face_selection import poll_mesh_to_select_in, select_faces_in_edit_mode
 from .label_colours import colour_faces, colours_shown, hide_colours
 from .labels import read_labels, write_face_maps, write_label_attribute
 from .mesh_arrays import read_mesh_arrays
@@ -91,14 +91,7 @@ of every violation in Edit Mode"""
 
     @classmethod
     def poll(cls, context):
-        obj = context.active_object
-        if obj is None or obj.type != 'MESH':
-            cls.poll_message_set("Make a mesh object active")
-            return False
-        if context.mode not in {'OBJECT', 'EDIT_MESH'}:
-            cls.poll_message_set("Switch to Object Mode or Edit Mode first")
-            return False
-        return True
+        return poll_mesh_to_select_in(cls, context, context.active_object)
 
     def execute(self, context):
         obj = context.active_object

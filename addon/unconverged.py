@@ -3,7 +3,7 @@
 
 import bpy
 
-from .face_selection import select_faces_in_edit_mode
+from .face_selection import poll_mesh_to_select_in, select_faces_in_edit_mode
 from .report import load_report, report_faces
 
 UNCONVERGED = "unconverged_faces"
@@ -24,11 +24,10 @@ class OBJECT_OT_polycube_select_unconverged(bpy.types.Operator):
     @classmethod
     def poll(cls, context):
         obj = context.active_object
-        if obj is None or obj.type != 'MESH' or not unconverged_count(load_report(obj)):
-            cls.poll_message_set("The active object's last deformation left no face above the tolerance")
+        if not poll_mesh_to_select_in(cls, context, obj):
             return False
-        if context.mode not in {'OBJECT', 'EDIT_MESH'}:
-            cls.poll_message_set("Switch to Object Mode or Edit Mode first")
+        if not unconverged_count(load_report(obj)):
+            cls.poll_message_set("The active object's last deformation left no face above the tolerance")
             return False
         return True
 
