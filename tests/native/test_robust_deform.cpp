@@ -190,7 +190,9 @@ TEST(Robust, SphereEllipsoidAndTorusStayFoldFree) {
     print(name, "robust", r);
     EXPECT_EQ(worst, 0);
     EXPECT_TRUE(r.flipped_faces.empty());
-    if (name != "torus") EXPECT_TRUE(r.converged);
+    if (name != "torus") {
+      EXPECT_TRUE(r.converged);
+    }
   }
 }
 
