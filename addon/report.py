@@ -49,6 +49,8 @@ def outcome(report):
     """How the run ended, in a word or two."""
     if report["stopped"]:
         return "stopped"
+    if report.get("failure"):
+        return f"solver broke off ({report['failure']})"
     return "converged" if report["converged"] else "not converged"
 
 

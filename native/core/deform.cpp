@@ -146,7 +146,7 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
   };
   // Measures, reports to the callback; false when the run must stop.
   auto finish_iteration = [&](int iteration) {
-    result.figures = quality.measure(x);
+    result.figures = quality.measure(x, static_cast<bool>(callback));
     result.iterations = iteration;
     result.converged = converged(result.figures, options.tolerance_deg, triangles.rows());
     result.seconds.measure += phase.lap();
@@ -158,125 +158,134 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
     return !result.converged;
   };
 
-  if (options.variant == Variant::kRobust) {
-    // Positive weights: with negative cotangents L is indefinite and the
-    // global step can fold triangles on its own (bone: 16% of the input's
-    // corners are obtuse, fandisk 7%). Clamping at zero keeps L positive
-    // semidefinite, and every fixed point is still an exact polycube.
-    const CotangentWeights weights = cotangent_weights(mesh.vertices, triangles).cwiseMax(0.0);
-    const double shift = laplacian.assemble(weights, kRelativeShift);
-    result.seconds.assemble += phase.lap();
-    if (!result.converged) factorization.factorize(laplacian.matrix());
-    result.seconds.factorize += phase.lap();
-    // The Laplacian of the current mesh, for the steps the input's cannot take.
-    Laplacian current_laplacian(n, triangles);
-    SparseCholesky current_factorization;
-    bool current_analyzed = false;
-
-    FaceStates state = quality.face_states(x);
-    const std::vector<std::vector<int>> adjacency = face_adjacency(triangulation, mesh.faces.count());
-    std::vector<char> relabelled(mesh.faces.count(), 0);
-    const double diagonal = (mesh.vertices.colwise().maxCoeff() - mesh.vertices.colwise().minCoeff()).norm();
-
-    // Fold-free steps (fold_free_step.h), put back on the components'
-    // centroids, which per-vertex steps move a little.
-    auto controlled_step = [&](const Vertices& target) {
-      FoldFreeStep step = fold_free_step(x, state, target, triangles, quality, kMaxHalvings);
-      const Eigen::MatrixX3d drift = component_centroids(step.positions, parts) - centroids;
-      for (int v = 0; v < n; ++v)
-        if (parts.of_vertex[v] >= 0) step.positions.row(v) -= drift.row(parts.of_vertex[v]);
-      return step;
-    };
-
-    bool exact = false;
-    int fit_iterations = 0, since_progress = 0;
-    double best_max = state.max_deviation_deg;
-    for (int iteration = 1; iteration <= options.iterations && !result.converged; ++iteration) {
-      FoldFreeStep step;
-      if (!exact) {
-        // Phase 1: fit every triangle's input shape, turned onto its axis
-        // (fitted_rotations.h), with the input's Laplacian factorised once.
-        const Rotations rotations = fitted_rotations(mesh.vertices, x, triangles, weights, triangle_labels);
-        const Eigen::MatrixX3d rhs = rotated_edges_rhs(mesh.vertices, triangles, weights, rotations) + shift * x;
-        ++fit_iterations;
-        result.seconds.rotations += phase.lap();
-        step = controlled_step(solve(factorization, rhs, iteration));
-        result.seconds.solve += phase.lap();
-      } else {
-        // Phase 2: the paper's step, exact at its fixed points, with the
-        // input's Laplacian (fast: one back-substitution). Where that step
-        // would fold faces, take the paper's step with the Laplacian of the
-        // current mesh instead: with the input's, the paper's iteration
-        // reaches collapsed faces by turning them over first (B0: 4 faces
-        // folded at iteration 4 of `fixed`); the current metric's does not.
-        Eigen::MatrixX3d rhs = poisson_rhs(x, triangles, weights, triangle_labels) + shift * x;
-        result.seconds.rotations += phase.lap();
-        step = controlled_step(solve(factorization, rhs, iteration));
-        result.seconds.solve += phase.lap();
-        if (step.limited > 0) {
-          const CotangentWeights current = cotangent_weights(x, triangles).cwiseMax(0.0);
-          const double current_shift = current_laplacian.assemble(current, kRelativeShift);
-          if (!current_analyzed) current_factorization.analyze(current_laplacian.matrix());
-          current_analyzed = true;
-          result.seconds.assemble += phase.lap();
-          current_factorization.factorize(current_laplacian.matrix());
-          result.seconds.factorize += phase.lap();
-          rhs = poisson_rhs(x, triangles, current, triangle_labels) + current_shift * x;
-          result.seconds.rotations += phase.lap();
-          step = controlled_step(solve(current_factorization, rhs, iteration));
-          result.seconds.solve += phase.lap();
-        }
-      }
-      const double step_size = (step.positions - x).rowwise().norm().maxCoeff() / diagonal;
-      x = std::move(step.positions);
-      state = std::move(step.states);
-
-      if (!exact && (step_size < kFitStepTolerance || fit_iterations >= kMaxFitIterations)) exact = true;
-      // Stalled: the largest deviation has not improved for a while. Faces
-      // held back by the step control are the usual reason: repair their
-      // labels where a neighbour's label fits them (label_repair.h).
-      if (state.max_deviation_deg < best_max * (1.0 - kProgress)) {
-        best_max = state.max_deviation_deg;
-        since_progress = 0;
-      } else if (exact && ++since_progress >= kStallIterations) {
-        since_progress = 0;
-        const std::vector<int> changed = repair_stalled_labels(x, triangulation, adjacency, state,
-                                                               kRepairDeviationDeg, result.labels);
-        if (!changed.empty()) {
-          for (int f : changed) relabelled[f] = 1;
-          for (size_t t = 0; t < triangle_labels.size(); ++t)
-            triangle_labels[t] = result.labels[triangulation.face_of_triangle[t]];
-          quality.set_labels(triangle_labels);
-          state = quality.face_states(x);
-          best_max = state.max_deviation_deg;
-        }
-      }
-      if (!finish_iteration(iteration)) break;
-    }
-    for (int f = 0; f < mesh.faces.count(); ++f)
-      if (relabelled[f]) result.relabelled_faces.push_back(f);
-    result.factorizations += current_factorization.factorizations();
-  } else {
-    CotangentWeights weights;
-    double shift = 0.0;
-    auto rebuild = [&](const Vertices& from) {
-      weights = cotangent_weights(from, triangles);
-      shift = laplacian.assemble(weights, kRelativeShift);
+  // A solve that breaks down after some iterations (the paper's `current`
+  // variant on armadillo: its triangles degenerate until the Laplacian is
+  // singular) ends the run with what was done, not with nothing.
+  try {
+    if (options.variant == Variant::kRobust) {
+      // Positive weights: with negative cotangents L is indefinite and the
+      // global step can fold triangles on its own (bone: 16% of the input's
+      // corners are obtuse, fandisk 7%). Clamping at zero keeps L positive
+      // semidefinite, and every fixed point is still an exact polycube.
+      const CotangentWeights weights = cotangent_weights(mesh.vertices, triangles).cwiseMax(0.0);
+      const double shift = laplacian.assemble(weights, kRelativeShift);
       result.seconds.assemble += phase.lap();
-      factorization.factorize(laplacian.matrix());
+      if (!result.converged) factorization.factorize(laplacian.matrix());
       result.seconds.factorize += phase.lap();
-    };
-    if (options.variant == Variant::kFixed && !result.converged) rebuild(mesh.vertices);
-    else result.seconds.assemble += phase.lap();
+      // The Laplacian of the current mesh, for the steps the input's cannot take.
+      Laplacian current_laplacian(n, triangles);
+      SparseCholesky current_factorization;
+      bool current_analyzed = false;
 
-    for (int iteration = 1; iteration <= options.iterations && !result.converged; ++iteration) {
-      if (options.variant == Variant::kCurrent) rebuild(x);
-      const Eigen::MatrixX3d rhs = poisson_rhs(x, triangles, weights, triangle_labels) + shift * x;
-      result.seconds.rotations += phase.lap();
-      x = solve(factorization, rhs, iteration);
-      result.seconds.solve += phase.lap();
-      if (!finish_iteration(iteration)) break;
+      FaceStates state = quality.face_states(x);
+      const std::vector<std::vector<int>> adjacency = face_adjacency(triangulation, mesh.faces.count());
+      std::vector<char> relabelled(mesh.faces.count(), 0);
+      const double diagonal = (mesh.vertices.colwise().maxCoeff() - mesh.vertices.colwise().minCoeff()).norm();
+
+      // Fold-free steps (fold_free_step.h), put back on the components'
+      // centroids, which per-vertex steps move a little.
+      auto controlled_step = [&](const Vertices& target) {
+        FoldFreeStep step = fold_free_step(x, state, target, triangles, quality, kMaxHalvings);
+        const Eigen::MatrixX3d drift = component_centroids(step.positions, parts) - centroids;
+        for (int v = 0; v < n; ++v)
+          if (parts.of_vertex[v] >= 0) step.positions.row(v) -= drift.row(parts.of_vertex[v]);
+        return step;
+      };
+
+      bool exact = false;
+      int fit_iterations = 0, since_progress = 0;
+      double best_max = state.max_deviation_deg;
+      for (int iteration = 1; iteration <= options.iterations && !result.converged; ++iteration) {
+        FoldFreeStep step;
+        if (!exact) {
+          // Phase 1: fit every triangle's input shape, turned onto its axis
+          // (fitted_rotations.h), with the input's Laplacian factorised once.
+          const Rotations rotations = fitted_rotations(mesh.vertices, x, triangles, weights, triangle_labels);
+          const Eigen::MatrixX3d rhs = rotated_edges_rhs(mesh.vertices, triangles, weights, rotations) + shift * x;
+          ++fit_iterations;
+          result.seconds.rotations += phase.lap();
+          step = controlled_step(solve(factorization, rhs, iteration));
+          result.seconds.solve += phase.lap();
+        } else {
+          // Phase 2: the paper's step, exact at its fixed points, with the
+          // input's Laplacian (fast: one back-substitution). Where that step
+          // would fold faces, take the paper's step with the Laplacian of the
+          // current mesh instead: with the input's, the paper's iteration
+          // reaches collapsed faces by turning them over first (B0: 4 faces
+          // folded at iteration 4 of `fixed`); the current metric's does not.
+          Eigen::MatrixX3d rhs = poisson_rhs(x, triangles, weights, triangle_labels) + shift * x;
+          result.seconds.rotations += phase.lap();
+          step = controlled_step(solve(factorization, rhs, iteration));
+          result.seconds.solve += phase.lap();
+          if (step.limited > 0) {
+            const CotangentWeights current = cotangent_weights(x, triangles).cwiseMax(0.0);
+            const double current_shift = current_laplacian.assemble(current, kRelativeShift);
+            if (!current_analyzed) current_factorization.analyze(current_laplacian.matrix());
+            current_analyzed = true;
+            result.seconds.assemble += phase.lap();
+            current_factorization.factorize(current_laplacian.matrix());
+            result.seconds.factorize += phase.lap();
+            rhs = poisson_rhs(x, triangles, current, triangle_labels) + current_shift * x;
+            result.seconds.rotations += phase.lap();
+            step = controlled_step(solve(current_factorization, rhs, iteration));
+            result.seconds.solve += phase.lap();
+          }
+        }
+        const double step_size = (step.positions - x).rowwise().norm().maxCoeff() / diagonal;
+        x = std::move(step.positions);
+        state = std::move(step.states);
+
+        if (!exact && (step_size < kFitStepTolerance || fit_iterations >= kMaxFitIterations)) exact = true;
+        // Stalled: the largest deviation has not improved for a while. Faces
+        // held back by the step control are the usual reason: repair their
+        // labels where a neighbour's label fits them (label_repair.h).
+        if (state.max_deviation_deg < best_max * (1.0 - kProgress)) {
+          best_max = state.max_deviation_deg;
+          since_progress = 0;
+        } else if (exact && ++since_progress >= kStallIterations) {
+          since_progress = 0;
+          const std::vector<int> changed = repair_stalled_labels(x, triangulation, adjacency, state,
+                                                                 kRepairDeviationDeg, result.labels);
+          if (!changed.empty()) {
+            for (int f : changed) relabelled[f] = 1;
+            for (size_t t = 0; t < triangle_labels.size(); ++t)
+              triangle_labels[t] = result.labels[triangulation.face_of_triangle[t]];
+            quality.set_labels(triangle_labels);
+            state = quality.face_states(x);
+            best_max = state.max_deviation_deg;
+          }
+        }
+        if (!finish_iteration(iteration)) break;
+      }
+      for (int f = 0; f < mesh.faces.count(); ++f)
+        if (relabelled[f]) result.relabelled_faces.push_back(f);
+      result.factorizations += current_factorization.factorizations();
+    } else {
+      CotangentWeights weights;
+      double shift = 0.0;
+      auto rebuild = [&](const Vertices& from) {
+        weights = cotangent_weights(from, triangles);
+        shift = laplacian.assemble(weights, kRelativeShift);
+        result.seconds.assemble += phase.lap();
+        factorization.factorize(laplacian.matrix());
+        result.seconds.factorize += phase.lap();
+      };
+      if (options.variant == Variant::kFixed && !result.converged) rebuild(mesh.vertices);
+      else result.seconds.assemble += phase.lap();
+
+      for (int iteration = 1; iteration <= options.iterations && !result.converged; ++iteration) {
+        if (options.variant == Variant::kCurrent) rebuild(x);
+        const Eigen::MatrixX3d rhs = poisson_rhs(x, triangles, weights, triangle_labels) + shift * x;
+        result.seconds.rotations += phase.lap();
+        x = solve(factorization, rhs, iteration);
+        result.seconds.solve += phase.lap();
+        if (!finish_iteration(iteration)) break;
+      }
     }
+
+  } catch (const Error& e) {
+    if (result.iterations == 0) throw;
+    result.failure = e.what();
   }
 
   // The faces that did not make it, by polygon id.
@@ -294,6 +303,7 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
     }
     result.seconds.measure += phase.lap();
   }
+  result.figures = quality.measure(x);
   result.factorizations += factorization.factorizations();
   result.solver = factorization.backend();
   result.positions = std::move(x);

@@ -80,6 +80,7 @@ struct DeformResult {
   int iterations = 0;
   bool converged = false;   // largest normal deviation below the tolerance, and not degenerate (see deform.cpp)
   bool stopped = false;     // the callback asked to stop
+  std::string failure;      // why the solver broke off after some iterations; empty otherwise
   int unlabelled_faces = 0;
   int triangles = 0;
   // Polygon faces (ids into the input's faces, ascending) that end above the

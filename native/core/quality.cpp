@@ -82,7 +82,7 @@ void QualityMeasure::update_face_state(const Vertices& output, Eigen::Index f, F
   s.flipped[f] = unit.dot(axis) < 0.0;
 }
 
-Figures QualityMeasure::measure(const Vertices& output) const {
+Figures QualityMeasure::measure(const Vertices& output, bool errors) const {
   const FaceStates s = face_states(output);
   Figures figures;
   figures.normal_deviation_max_deg = s.max_deviation_deg;
@@ -93,7 +93,7 @@ Figures QualityMeasure::measure(const Vertices& output) const {
 #pragma omp parallel for num_threads(parallel_threads(count)) \
     reduction(+ : weighted_deviation, counted_area, area_error, area_count, collapsed)
   for (Eigen::Index f = 0; f < count; ++f) {
-    if (input_area_[f] > 0.0) {
+    if (errors && input_area_[f] > 0.0) {
       area_error += std::abs(s.area[f] / (s.scale2 * input_area_[f]) - 1.0);
       ++area_count;
     }
@@ -107,6 +107,7 @@ Figures QualityMeasure::measure(const Vertices& output) const {
   figures.collapsed_faces = collapsed;
   figures.normal_deviation_mean_deg = counted_area > 0.0 ? weighted_deviation / counted_area : 0.0;
   figures.area_error = area_count > 0 ? area_error / area_count : 0.0;
+  if (!errors) return figures;
 
   const double scale = std::sqrt(s.scale2);
   double edge_error = 0.0;

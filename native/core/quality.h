@@ -54,7 +54,10 @@ class QualityMeasure {
   // for local changes, where a full pass per change would cost O(mesh).
   // flipped_count and max_deviation_deg are not updated.
   void update_face_state(const Vertices& output, Eigen::Index f, FaceStates& states) const;
-  Figures measure(const Vertices& output) const;
+  // Without `errors`, the edge and area error means are left at 0: the
+  // stopping rule needs only the normal figures, and the edge pass is the
+  // costliest part.
+  Figures measure(const Vertices& output, bool errors = true) const;
 
   // Labels changed by a repair: the input's measurements stay.
   void set_labels(std::vector<int> triangle_labels) { labels_ = std::move(triangle_labels); }

@@ -35,6 +35,7 @@ JsonWriter deform_report(const PolygonMesh& mesh, const DeformResult& r, const D
       .add("iterations", r.iterations)
       .add("converged", r.converged)
       .add("stopped", r.stopped)
+      .add("failure", r.failure)
       .add("unlabelled_faces", r.unlabelled_faces)
       .add("solver", r.solver)
       .add("factorizations", r.factorizations);
