@@ -389,46 +389,29 @@ T load(const char* p, bool swap) {
   return v;
 }
 
-double load_double(const char* p, PlyType t, bool swap) {
+// A PLY value of type t as R. Integer reads only meet integer types (the
+// header check makes sure).
+template <class R>
+R load_as(const char* p, PlyType t, bool swap) {
   switch (t) {
     case PlyType::i8:
-      return load<int8_t>(p, swap);
+      return static_cast<R>(load<int8_t>(p, swap));
     case PlyType::u8:
-      return load<uint8_t>(p, swap);
+      return static_cast<R>(load<uint8_t>(p, swap));
     case PlyType::i16:
-      return load<int16_t>(p, swap);
+      return static_cast<R>(load<int16_t>(p, swap));
     case PlyType::u16:
-      return load<uint16_t>(p, swap);
+      return static_cast<R>(load<uint16_t>(p, swap));
     case PlyType::i32:
-      return load<int32_t>(p, swap);
+      return static_cast<R>(load<int32_t>(p, swap));
     case PlyType::u32:
-      return load<uint32_t>(p, swap);
+      return static_cast<R>(load<uint32_t>(p, swap));
     case PlyType::f32:
-      return load<float>(p, swap);
+      return static_cast<R>(load<float>(p, swap));
     case PlyType::f64:
-      return load<double>(p, swap);
+      return static_cast<R>(load<double>(p, swap));
   }
-  return 0;
-}
-
-// Only called for integral types (the header check makes sure).
-long long load_int(const char* p, PlyType t, bool swap) {
-  switch (t) {
-    case PlyType::i8:
-      return load<int8_t>(p, swap);
-    case PlyType::u8:
-      return load<uint8_t>(p, swap);
-    case PlyType::i16:
-      return load<int16_t>(p, swap);
-    case PlyType::u16:
-      return load<uint16_t>(p, swap);
-    case PlyType::i32:
-      return load<int32_t>(p, swap);
-    case PlyType::u32:
-      return load<uint32_t>(p, swap);
-    default:
-      return -1;
-  }
+  return R{};
 }
 
 enum PlyRole { kSkip = -1, kX = 0, kY = 1, kZ = 2, kFaceList = 3 };
@@ -663,7 +646,7 @@ PolygonMesh read_ply(const std::string& path, const std::string& data) {
           size_t size = ply_size(q.type);
           if (static_cast<size_t>(end - p) < size) truncated(e, i);
           if (q.role != kSkip) {
-            double x = load_double(p, q.type, swap);
+            double x = load_as<double>(p, q.type, swap);
             if (!std::isfinite(x)) fail(path, "vertex " + std::to_string(i) + " has a non-finite coordinate");
             mesh.vertices(i, q.role) = x;
           }
@@ -672,14 +655,14 @@ PolygonMesh read_ply(const std::string& path, const std::string& data) {
         }
         size_t count_size = ply_size(q.count_type), size = ply_size(q.type);
         if (static_cast<size_t>(end - p) < count_size) truncated(e, i);
-        long long n = load_int(p, q.count_type, swap);
+        long long n = load_as<long long>(p, q.count_type, swap);
         p += count_size;
         if (n < 0) fail(path, name_of(e, i) + " has a negative list length " + std::to_string(n));
         if (static_cast<size_t>(end - p) / size < static_cast<size_t>(n)) truncated(e, i);
         if (q.role == kFaceList) {
           check_size(n, e, i, 0);
           for (long long j = 0; j < n; ++j) {
-            long long v = load_int(p + j * size, q.type, swap);
+            long long v = load_as<long long>(p + j * size, q.type, swap);
             check_vertex(v, e, i, 0);
             faces.indices.push_back(static_cast<int>(v));
           }
