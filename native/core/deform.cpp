@@ -12,6 +12,7 @@
 #include "core/fold_free_step.h"
 #include "core/label_repair.h"
 #include "core/laplacian.h"
+#include "core/mesh_adjacency.h"
 #include "core/nearest_labels.h"
 #include "core/poisson_rhs.h"
 #include "core/sparse_cholesky.h"
@@ -178,7 +179,7 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
       bool current_analyzed = false;
 
       FaceStates state = quality.face_states(x);
-      const std::vector<std::vector<int>> adjacency = face_adjacency(triangulation, mesh.faces.count());
+      const std::vector<std::vector<int>> adjacency = face_neighbours(mesh_adjacency(mesh.faces, n), mesh.faces.count());
       std::vector<char> relabelled(mesh.faces.count(), 0);
       const double diagonal = (mesh.vertices.colwise().maxCoeff() - mesh.vertices.colwise().minCoeff()).norm();
 

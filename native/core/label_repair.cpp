@@ -2,31 +2,10 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
-#include <map>
 
 #include "core/axis.h"
 
 namespace polycube {
-
-std::vector<std::vector<int>> face_adjacency(const Triangulation& triangulation, int face_count) {
-  const Triangles& t = triangulation.triangles;
-  std::map<std::pair<int, int>, std::vector<int>> faces_of_edge;
-  for (Eigen::Index i = 0; i < t.rows(); ++i)
-    for (int k = 0; k < 3; ++k) {
-      const int a = t(i, k), b = t(i, (k + 1) % 3);
-      faces_of_edge[{std::min(a, b), std::max(a, b)}].push_back(triangulation.face_of_triangle[i]);
-    }
-  std::vector<std::vector<int>> adjacency(face_count);
-  for (const auto& [edge, faces] : faces_of_edge)
-    for (int f : faces)
-      for (int g : faces)
-        if (f != g) adjacency[f].push_back(g);
-  for (std::vector<int>& list : adjacency) {
-    std::sort(list.begin(), list.end());
-    list.erase(std::unique(list.begin(), list.end()), list.end());
-  }
-  return adjacency;
-}
 
 std::vector<int> repair_stalled_labels(const Vertices& positions, const Triangulation& triangulation,
                                        const std::vector<std::vector<int>>& adjacency, const FaceStates& states,

@@ -21,10 +21,7 @@
 
 namespace polycube {
 
-// Polygon faces adjacent to each polygon face through a shared triangle edge.
-std::vector<std::vector<int>> face_adjacency(const Triangulation& triangulation, int face_count);
-
-// Relabels the stalled polygon faces (see above): those with a triangle that
+// `neighbours`: face_neighbours (mesh_adjacency.h). Relabels the stalled polygon faces (see above): those with a triangle that
 // deviates more than `min_deviation_deg`; updates `labels` (per polygon) and returns
 // the faces changed, ascending.
 std::vector<int> repair_stalled_labels(const Vertices& positions, const Triangulation& triangulation,

@@ -53,4 +53,18 @@ MeshAdjacency mesh_adjacency(const PolygonFaces& faces, int vertex_count) {
   return adjacency;
 }
 
+std::vector<std::vector<int>> face_neighbours(const MeshAdjacency& adjacency, int face_count) {
+  std::vector<std::vector<int>> neighbours(face_count);
+  for (int e = 0; e < adjacency.edge_count(); ++e)
+    for (int i = adjacency.edge_offsets[e]; i < adjacency.edge_offsets[e + 1]; ++i)
+      for (int j = adjacency.edge_offsets[e]; j < adjacency.edge_offsets[e + 1]; ++j)
+        if (adjacency.edge_faces[i] != adjacency.edge_faces[j])
+          neighbours[adjacency.edge_faces[i]].push_back(adjacency.edge_faces[j]);
+  for (std::vector<int>& list : neighbours) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  }
+  return neighbours;
+}
+
 }  // namespace polycube

@@ -32,4 +32,7 @@ struct MeshAdjacency {
 // Indices must be in range (check_input); the result is deterministic.
 MeshAdjacency mesh_adjacency(const PolygonFaces& faces, int vertex_count);
 
+// The faces sharing an edge with each face, ascending, each once.
+std::vector<std::vector<int>> face_neighbours(const MeshAdjacency& adjacency, int face_count);
+
 }  // namespace polycube
