@@ -26,7 +26,7 @@ class Labels(NamedTuple):
     source: str         # where they came from, for the panel and the report
 
 
-NO_LABELS = "none"
+NO_LABELS = "none (nearest axis)"
 
 
 def read_labels(obj):

@@ -8,7 +8,6 @@ from .label_cache import label_summary
 from .label_colours import LABEL_COLOURS, UNLABELLED_COLOUR, colours_shown, display_colour
 from .label_operators import (
     OBJECT_OT_polycube_auto_label, OBJECT_OT_polycube_label_colours, OBJECT_OT_polycube_validate_labels)
-from .labels import NO_LABELS
 from .operators import OBJECT_OT_polycube_deform
 from .polycube_native import LABEL_NAMES
 from .report import load_report, outcome
@@ -57,7 +56,7 @@ def _draw_labels(layout, obj, settings):
             line += word + " "
         layout.label(text=line)
     else:
-        source = "None: nearest axis" if summary.source == NO_LABELS else summary.source.capitalize()
+        source = summary.source.capitalize()
         layout.label(text=source, icon='FACESEL')
         # The legend: each label's colour in the viewport, and its faces.
         grid = layout.grid_flow(row_major=True, columns=2, even_columns=True, align=True)

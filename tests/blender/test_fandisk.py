@@ -27,7 +27,7 @@ def test_fandisk_shape_keys_and_figures():
     result = report(fandisk)
     n = result["iterations"]
     assert (result["vertices"], result["faces"], result["unlabelled_faces"]) == (6475, 12946, 12946)
-    assert result["label_source"] == "none"
+    assert result["label_source"] == "none (nearest axis)"
     assert key_names(fandisk) == ["Basis"] + [f"Polycube {k:03d}" for k in range(1, n + 1)]
     assert np.array_equal(key_coordinates(fandisk, "Basis"), file_vertices.astype(np.float32))
     assert np.array_equal(vertices(fandisk), file_vertices.astype(np.float32))
