@@ -106,9 +106,10 @@ def test_gil_is_released_while_solving(native):
         time.sleep(0.001)
     worker.join()
     elapsed = time.perf_counter() - start
-    # Holding the GIL would starve this loop to a handful of ticks for the whole solve.
+    # Holding the GIL would starve this loop to a tick or two for the whole
+    # solve; a loaded machine only makes each tick longer.
     assert elapsed > 0.1, "the solve was too short to tell"
-    assert ticks > elapsed / 0.001 * 0.2
+    assert ticks >= 20
 
 
 @pytest.mark.parametrize("mutate, words", [
