@@ -110,14 +110,9 @@ TEST_P(BothVariants, RealModelsWithBoundaryAndGenusStayFinite) {
   }
 }
 
-// The default variant on the shapes the plain method handles (DESIGN.md section 2).
+// The paper's method, factorised once, on the shapes it handles (DESIGN.md section 2).
 TEST(DeformFixed, SphereEllipsoidAndTorusBecomePolycubes) {
-  const std::pair<std::string, PolygonMesh> shapes[] = {
-      {"sphere", test_meshes::uv_sphere(32, 16)},
-      {"ellipsoid", test_meshes::uv_sphere(32, 16, Eigen::Vector3d(1.5, 1.0, 0.7))},
-      {"torus", test_meshes::torus(48, 24)},
-  };
-  for (const auto& [name, mesh] : shapes) {
+  for (const auto& [name, mesh] : test_meshes::smooth_shapes()) {
     SCOPED_TRACE(name);
     const DeformResult fixed = deform(mesh, nearest_labels(mesh), options(Variant::kFixed));
     record(name + " fixed", fixed);
@@ -134,12 +129,7 @@ TEST(DeformFixed, SphereEllipsoidAndTorusBecomePolycubes) {
 // torus above, 48 x 24, stays about 3.8 degrees off with it: quads bent across
 // a polycube edge (see deform.h); this finer one converges.
 TEST(DeformDefault, SphereEllipsoidAndTorusBecomePolycubes) {
-  const std::pair<std::string, PolygonMesh> shapes[] = {
-      {"sphere", test_meshes::uv_sphere(32, 16)},
-      {"ellipsoid", test_meshes::uv_sphere(32, 16, Eigen::Vector3d(1.5, 1.0, 0.7))},
-      {"torus 96x48", test_meshes::torus(96, 48)},
-  };
-  for (const auto& [name, mesh] : shapes) {
+  for (const auto& [name, mesh] : test_meshes::smooth_shapes(96, 48)) {
     SCOPED_TRACE(name);
     DeformOptions defaults;
     defaults.iterations = 300;

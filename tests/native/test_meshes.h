@@ -102,6 +102,15 @@ inline void add_block(std::set<std::array<int, 3>>& voxels, std::array<int, 3> a
       for (int z = 0; z < nz; ++z) voxels.insert({at[0] + x, at[1] + y, at[2] + z});
 }
 
+// The smooth shapes the plain method turns into polycubes with nearest-axis
+// labels (DESIGN.md section 2): a sphere, an axis-aligned ellipsoid, a torus.
+inline std::vector<std::pair<std::string, PolygonMesh>> smooth_shapes(int torus_segments = 48, int torus_rings = 24) {
+  return {{"sphere", uv_sphere(32, 16)},
+          {"ellipsoid", uv_sphere(32, 16, Eigen::Vector3d(1.5, 1.0, 0.7))},
+          {"torus " + std::to_string(torus_segments) + "x" + std::to_string(torus_rings),
+           torus(torus_segments, torus_rings)}};
+}
+
 // A Möbius strip: `segments` quads around, `across` quads across, one half twist.
 inline PolygonMesh moebius_strip(int segments, int across) {
   PolygonMesh mesh;
