@@ -120,6 +120,8 @@ def _draw_report(layout, report):
         rows += (("Unconverged faces", str(unconverged)),)
     if report.get("relabelled_faces_count"):
         rows += (("Relabelled faces", str(report["relabelled_faces_count"])),)
+    if report.get("flat_iteration"):
+        rows += (("Charts flat from", f"iteration {report['flat_iteration']}"),)
     _draw_rows(layout, rows)
     if unconverged:
         layout.operator(OBJECT_OT_polycube_select_unconverged.bl_idname, icon='RESTRICT_SELECT_OFF')

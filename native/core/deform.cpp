@@ -3,12 +3,14 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
 #include "core/axis.h"
 #include "core/check_input.h"
 #include "core/components.h"
 #include "core/cotangent_weights.h"
 #include "core/fitted_rotations.h"
+#include "core/flatten_charts.h"
 #include "core/fold_free_step.h"
 #include "core/label_repair.h"
 #include "core/laplacian.h"
@@ -36,6 +38,9 @@ constexpr int kMaxHalvings = 6;
 // as-rigid-as-possible, not exact, so it is only a starting point.
 constexpr int kMaxFitIterations = 30;
 constexpr double kFitStepTolerance = 1e-3;
+// Attempts at flattening the charts (flatten_charts.h): when the fitting
+// phase ends, then when progress stalls, each after a label repair.
+constexpr int kMaxFlattenAttempts = 3;
 // Stalled: the largest deviation has not dropped by kProgress (relative) for
 // kStallIterations; then faces above kRepairDeviationDeg are candidates for
 // label repair (label_repair.h).
@@ -43,6 +48,8 @@ constexpr int kStallIterations = 10;
 constexpr double kProgress = 0.01;
 constexpr double kRepairDeviationDeg = 45.0;
 
+
+int count(const std::vector<char>& flags) { return static_cast<int>(std::count(flags.begin(), flags.end(), 1)); }
 
 class Stopwatch {
  public:
@@ -132,11 +139,11 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
   SparseCholesky factorization;
   factorization.analyze(laplacian.matrix());
   Eigen::MatrixX3d solution(n, 3);
-  // Solves L y = rhs and puts every component's centroid back where it was.
-  auto solve = [&](const SparseCholesky& factorization, const Eigen::MatrixX3d& rhs, int iteration) {
-    solution = factorization.solve(rhs);
+  // Puts a solution back where the mesh stands: every component's centroid
+  // where it was, isolated vertices where they were.
+  auto place = [&](const Eigen::MatrixX3d& solution) {
     if (!solution.allFinite())
-      throw Error("the linear solve gave non-finite positions at iteration " + std::to_string(iteration));
+      throw Error("the linear solve gave non-finite positions at iteration " + std::to_string(result.iterations + 1));
     const Eigen::MatrixX3d drift = component_centroids(solution, parts) - centroids;
     Vertices y(n, 3);
     for (int v = 0; v < n; ++v) {
@@ -144,6 +151,10 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
       y.row(v) = c < 0 ? Eigen::RowVector3d(mesh.vertices.row(v)) : Eigen::RowVector3d(solution.row(v) - drift.row(c));
     }
     return y;
+  };
+  auto solve = [&](const SparseCholesky& factorization, const Eigen::MatrixX3d& rhs) {
+    solution = factorization.solve(rhs);
+    return place(solution);
   };
   // Measures, reports to the callback; false when the run must stop.
   auto finish_iteration = [&](int iteration) {
@@ -156,7 +167,7 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
       return false;
     }
     phase.lap();  // time spent in the callback belongs to the caller
-    return !result.converged;
+    return true;
   };
 
   // A solve that breaks down after some iterations (the paper's `current`
@@ -193,10 +204,55 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
         return step;
       };
 
+      // Phase 3 (flatten_charts.h): the exact polycube, every chart flat,
+      // fold-free; then relaxed inside the flat charts.
+      std::unique_ptr<ChartPlanes> planes;
+      bool relaxed = false;
+      int flatten_attempts = 0;
+      auto try_flatten = [&](int iteration) {
+        if (planes || flatten_attempts >= kMaxFlattenAttempts) return;
+        ++flatten_attempts;
+        FlatCharts flat = flatten_charts(mesh.vertices, x, triangles, triangle_labels, weights, laplacian.matrix(),
+                                         shift, quality, place);
+        result.seconds.factorize += phase.lap();  // nearly all of it
+        result.factorizations += flat.planes->factorizations();
+        if (!flat.found) return;
+        x = std::move(flat.positions);
+        state = std::move(flat.states);
+        planes = std::move(flat.planes);
+        result.flat_iteration = iteration;
+        result.collapsed_on_purpose = flat.collapsed_on_purpose;
+      };
+
       bool exact = false;
       int fit_iterations = 0, since_progress = 0;
       double best_max = state.max_deviation_deg;
-      for (int iteration = 1; iteration <= options.iterations && !result.converged; ++iteration) {
+      for (int iteration = 1; iteration <= options.iterations && (!result.converged || (planes && !relaxed));
+           ++iteration) {
+        if (planes) {
+          // Relaxing the flat polycube. Two flat shapes with the same charts
+          // blend into a flat shape, so the step is shortened as a whole
+          // until it folds or collapses nothing; the relaxation stops when
+          // even a short step would, or once steps are small.
+          const Vertices target = relax_flat_charts(mesh.vertices, x, triangles, triangle_labels, weights,
+                                                    laplacian.matrix(), shift, *planes, place);
+          Vertices next;
+          FaceStates next_state;
+          bool found = false;
+          for (int halving = 0; halving <= kMaxHalvings && !found; ++halving) {
+            next = x + std::ldexp(1.0, -halving) * (target - x);
+            next_state = quality.face_states(next);
+            found = next_state.flipped_count == 0 && count(next_state.collapsed) <= count(state.collapsed);
+          }
+          result.seconds.solve += phase.lap();
+          if (!found) break;
+          const double step_size = (next - x).rowwise().norm().maxCoeff() / diagonal;
+          x = std::move(next);
+          state = std::move(next_state);
+          relaxed = step_size < kFitStepTolerance;
+          if (!finish_iteration(iteration)) break;
+          continue;
+        }
         FoldFreeStep step;
         if (!exact) {
           // Phase 1: fit every triangle's input shape, turned onto its axis
@@ -205,7 +261,7 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
           const Eigen::MatrixX3d rhs = rotated_edges_rhs(mesh.vertices, triangles, weights, rotations) + shift * x;
           ++fit_iterations;
           result.seconds.rotations += phase.lap();
-          step = controlled_step(solve(factorization, rhs, iteration));
+          step = controlled_step(solve(factorization, rhs));
           result.seconds.solve += phase.lap();
         } else {
           // Phase 2: the paper's step, exact at its fixed points, with the
@@ -216,7 +272,7 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
           // folded at iteration 4 of `fixed`); the current metric's does not.
           Eigen::MatrixX3d rhs = poisson_rhs(x, triangles, weights, triangle_labels) + shift * x;
           result.seconds.rotations += phase.lap();
-          step = controlled_step(solve(factorization, rhs, iteration));
+          step = controlled_step(solve(factorization, rhs));
           result.seconds.solve += phase.lap();
           if (step.limited > 0) {
             const CotangentWeights current = cotangent_weights(x, triangles).cwiseMax(0.0);
@@ -228,7 +284,7 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
             result.seconds.factorize += phase.lap();
             rhs = poisson_rhs(x, triangles, current, triangle_labels) + current_shift * x;
             result.seconds.rotations += phase.lap();
-            step = controlled_step(solve(current_factorization, rhs, iteration));
+            step = controlled_step(solve(current_factorization, rhs));
             result.seconds.solve += phase.lap();
           }
         }
@@ -236,8 +292,14 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
         x = std::move(step.positions);
         state = std::move(step.states);
 
-        if (!exact && (step_size < kFitStepTolerance || fit_iterations >= kMaxFitIterations)) exact = true;
-        // Stalled: the largest deviation has not improved for a while. Faces
+        if (!exact && (step_size < kFitStepTolerance || fit_iterations >= kMaxFitIterations)) {
+          exact = true;
+          try_flatten(iteration);
+        }
+        // Attempts at flattening the charts (flatten_charts.h): when the fitting
+// phase ends, then when progress stalls, each after a label repair.
+constexpr int kMaxFlattenAttempts = 3;
+// Stalled: the largest deviation has not improved for a while. Faces
         // held back by the step control are the usual reason: repair their
         // labels where a neighbour's label fits them (label_repair.h).
         if (state.max_deviation_deg < best_max * (1.0 - kProgress)) {
@@ -255,6 +317,7 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
             state = quality.face_states(x);
             best_max = state.max_deviation_deg;
           }
+          try_flatten(iteration);
         }
         if (!finish_iteration(iteration)) break;
       }
@@ -278,7 +341,7 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
         if (options.variant == Variant::kCurrent) rebuild(x);
         const Eigen::MatrixX3d rhs = poisson_rhs(x, triangles, weights, triangle_labels) + shift * x;
         result.seconds.rotations += phase.lap();
-        x = solve(factorization, rhs, iteration);
+        x = solve(factorization, rhs);
         result.seconds.solve += phase.lap();
         if (!finish_iteration(iteration)) break;
       }

@@ -35,28 +35,31 @@ namespace polycube {
 //    the axis with the best in-plane twist (fitted_rotations.h), global step
 //    with the input Laplacian factorised once: an as-rigid-as-possible shape
 //    close to the polycube, which cuts edge and area error;
-// 3. then the paper's step, exact at its fixed points, with the input
-//    Laplacian; where it would fold a face, the paper's step with the current
-//    mesh's Laplacian instead, which collapses faces without turning them;
-// 4. every step fold-free (fold_free_step.h): faces never turn over;
-// 5. when progress stalls, faces held back near 90 degrees that fit a
+// 3. then the exact polycube in one go (flatten_charts.h): every chart flat
+//    on its plane by a constrained solve, the few slivers that would turn
+//    over collapsed instead, then relaxed as rigidly as possible inside the
+//    flat charts. Every face then has its axis' normal exactly: fandisk,
+//    eight, bone, mesh_with_border, cactus, double-torus-example converge in
+//    6 to 60 iterations instead of stalling 3 to 47 degrees off after 200;
+//    the price is more collapsed slivers than `fixed` (fandisk 160 against
+//    61, 1% of the area);
+// 4. where the labels ask for more than slivers (flattening would collapse
+//    over a fifth of the surface: elephant, anchor, armadillo, bunny00 with
+//    nearest-axis labels), the continuous iteration goes on: the paper's step
+//    with the input Laplacian, or, where that would fold a face, with the
+//    current mesh's Laplacian, which collapses faces without turning them;
+// 5. every step fold-free (fold_free_step.h): faces never turn over;
+// 6. when progress stalls, faces held back near 90 degrees that fit a
 //    neighbour's label better are relabelled (label_repair.h, listed in
-//    DeformResult::relabelled_faces).
-// What is left (see tests/native/test_robust_deform.cpp): faces that slowly
-// collapse keep their neighbours some degrees above the tolerance after 200
-// iterations (fandisk 7, eight 6, mesh_with_border 3.4 inside, the quad torus
-// 3.3): nearly every iteration the input-Laplacian step would fold a few
-// (mostly collapsed) triangles, so the slower current-Laplacian step is
-// taken. Faces stalled at up to 90 degrees with no better neighbouring label
-// stay (bone 47; elephant 90, whose nearest-axis labels need a real
-// labeller); so do polygons bent across a polycube edge, whose triangles
-// cannot share one label without one of them turning over (a trial that let
-// them turn over ended with folds on double-torus-example, so it was
-// dropped). All of them are listed in DeformResult::unconverged_faces.
+//    DeformResult::relabelled_faces), and flattening is tried again.
+// What is left (see tests/native/test_robust_deform.cpp): labels that cannot
+// be met without crushing the model (elephant 90 degrees, anchor 90) need a
+// better labelling, not a better deformation; the faces above the tolerance
+// are listed in DeformResult::unconverged_faces.
 enum class Variant {
   kFixed,    // built from the input once, factorised once: one back-substitution per iteration
   kCurrent,  // rebuilt from the current mesh every iteration, as in the paper
-  kRobust,   // fold-free: input-shape fitting, then the paper's step under a step control
+  kRobust,   // fold-free: input-shape fitting, then flat charts (or the paper's step under a step control)
 };
 
 constexpr Variant kVariants[] = {Variant::kRobust, Variant::kFixed, Variant::kCurrent};
@@ -92,6 +95,11 @@ struct DeformResult {
   // not reach its axis without folding (label_repair.h); `labels` holds the
   // new ones and the figures are measured against them.
   std::vector<int> relabelled_faces;
+  // The `robust` variant's iteration at which every chart became exactly
+  // flat (flatten_charts.h), 0 when it did not; the triangles it collapsed
+  // on purpose there to undo folds.
+  int flat_iteration = 0;
+  int collapsed_on_purpose = 0;
   int factorizations = 0;   // numeric factorisations of a Laplacian
   std::string solver;       // the factorisation used (sparse_cholesky.h)
   PhaseSeconds seconds;

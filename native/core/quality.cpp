@@ -124,4 +124,11 @@ Figures QualityMeasure::measure(const Vertices& output, bool errors) const {
   return figures;
 }
 
+double QualityMeasure::collapsed_area_fraction(const FaceStates& states) const {
+  double collapsed = 0.0;
+  for (size_t f = 0; f < input_area_.size(); ++f)
+    if (states.collapsed[f]) collapsed += input_area_[f];
+  return input_total_ > 0.0 ? collapsed / input_total_ : 0.0;
+}
+
 }  // namespace polycube

@@ -59,6 +59,9 @@ class QualityMeasure {
   // costliest part.
   Figures measure(const Vertices& output, bool errors = true) const;
 
+  // The share of the input's area in the collapsed triangles of `states`.
+  double collapsed_area_fraction(const FaceStates& states) const;
+
   // Labels changed by a repair: the input's measurements stay.
   void set_labels(std::vector<int> triangle_labels) { labels_ = std::move(triangle_labels); }
 

@@ -22,6 +22,7 @@ SparseCholesky::SparseCholesky() : backends_(std::make_unique<Backends>()) {}
 SparseCholesky::~SparseCholesky() = default;
 
 void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& matrix) {
+  rows_ = matrix.rows();
   backends_ = std::make_unique<Backends>();
 #ifdef POLYCUBE_WITH_CHOLMOD
   if (matrix.rows() >= kSupernodalThreshold) {
@@ -52,6 +53,13 @@ void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& matrix) {
 }
 
 Eigen::MatrixX3d SparseCholesky::solve(const Eigen::MatrixX3d& rhs) const {
+#ifdef POLYCUBE_WITH_CHOLMOD
+  if (backends_->supernodal) return backends_->supernodal->solve(rhs);
+#endif
+  return backends_->simplicial->solve(rhs);
+}
+
+Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& rhs) const {
 #ifdef POLYCUBE_WITH_CHOLMOD
   if (backends_->supernodal) return backends_->supernodal->solve(rhs);
 #endif

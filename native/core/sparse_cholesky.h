@@ -25,14 +25,17 @@ class SparseCholesky {
   // Throws Error when the matrix cannot be factorised.
   void factorize(const Eigen::SparseMatrix<double>& matrix);
   Eigen::MatrixX3d solve(const Eigen::MatrixX3d& rhs) const;
+  Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const;
 
   const char* backend() const;
+  Eigen::Index rows() const { return rows_; }
   int factorizations() const { return factorizations_; }
 
  private:
   struct Backends;
   std::unique_ptr<Backends> backends_;
   int factorizations_ = 0;
+  Eigen::Index rows_ = 0;
 };
 
 }  // namespace polycube

@@ -36,6 +36,8 @@ JsonWriter deform_report(const PolygonMesh& mesh, const DeformResult& r, const D
       .add("converged", r.converged)
       .add("stopped", r.stopped)
       .add("failure", r.failure)
+      .add("flat_iteration", r.flat_iteration)
+      .add("collapsed_on_purpose", r.collapsed_on_purpose)
       .add("unlabelled_faces", r.unlabelled_faces)
       .add("solver", r.solver)
       .add("factorizations", r.factorizations);

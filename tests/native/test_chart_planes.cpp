@@ -1,0 +1,153 @@
+// The flat-chart solve (chart_planes.h) and the robust variant's last phase
+// built on it (flatten_charts.h).
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <fstream>
+#include <set>
+
+#include "core/axis.h"
+#include "core/chart_planes.h"
+#include "core/cotangent_weights.h"
+#include "core/deform.h"
+#include "core/flatten_charts.h"
+#include "core/laplacian.h"
+#include "core/nearest_labels.h"
+#include "core/quality.h"
+#include "core/triangulate.h"
+#include "io/read_mesh.h"
+#include "test_meshes.h"
+
+namespace {
+
+using namespace polycube;
+
+struct Block {
+  Vertices x;
+  Triangles triangles;
+  std::vector<int> labels;  // per triangle
+};
+
+// An L-shaped block of unit voxels, every vertex moved by up to `noise`.
+Block noisy_l_block(double noise) {
+  std::set<std::array<int, 3>> voxels;
+  test_meshes::add_block(voxels, {0, 0, 0}, 4, 2, 2);
+  test_meshes::add_block(voxels, {0, 2, 0}, 2, 3, 2);
+  const test_meshes::LabelledMesh shape = test_meshes::voxel_surface(voxels);
+  const Triangulation t = triangulate(shape.mesh.vertices, shape.mesh.faces);
+  Block s;
+  s.x = shape.mesh.vertices + noise * Vertices::Random(shape.mesh.vertices.rows(), 3);
+  s.triangles = t.triangles;
+  for (Eigen::Index i = 0; i < t.triangles.rows(); ++i) s.labels.push_back(shape.labels[t.face_of_triangle[i]]);
+  return s;
+}
+
+// How far a triangle's unit normal is from its label's axis (0 when exact).
+double worst_normal_error(const Vertices& x, const Block& s) {
+  double worst = 0;
+  for (Eigen::Index t = 0; t < s.triangles.rows(); ++t) {
+    const Eigen::Vector3d a = x.row(s.triangles(t, 0)), b = x.row(s.triangles(t, 1)), c = x.row(s.triangles(t, 2));
+    const Eigen::Vector3d n = (b - a).cross(c - a).normalized();
+    worst = std::max(worst, (n - label_axis(s.labels[t])).norm());
+  }
+  return worst;
+}
+
+Eigen::SparseMatrix<double> shifted_laplacian(const Block& s, double* shift = nullptr) {
+  Laplacian laplacian(static_cast<int>(s.x.rows()), s.triangles);
+  const double added = laplacian.assemble(cotangent_weights(s.x, s.triangles).cwiseMax(0.0), 1e-8);
+  if (shift) *shift = added;
+  return laplacian.matrix();
+}
+
+// From a noisy block, the nearest flat-chart shape has every normal exactly
+// on its axis, and moves the vertices about as much as the noise.
+TEST(ChartPlanes, FlattensEveryChartExactly) {
+  const Block s = noisy_l_block(0.05);
+  ASSERT_GT(worst_normal_error(s.x, s), 0.01);
+  const Eigen::SparseMatrix<double> L = shifted_laplacian(s);
+  ChartPlanes planes(static_cast<int>(s.x.rows()), s.triangles, s.labels);
+  planes.factorize(L);
+  const Vertices flat = planes.solve(L * s.x);
+  EXPECT_LT(worst_normal_error(flat, s), 1e-12);
+  EXPECT_LT((flat - s.x).cwiseAbs().maxCoeff(), 0.2);
+  EXPECT_EQ(planes.factorizations(), 3);
+}
+
+// An exact polycube is its own nearest flat-chart shape (to the solve's
+// precision: the 1e-8 diagonal shift leaves L's condition number near 1e8).
+TEST(ChartPlanes, ExactPolycubesStayPut) {
+  const Block s = noisy_l_block(0.0);
+  const Eigen::SparseMatrix<double> L = shifted_laplacian(s);
+  ChartPlanes planes(static_cast<int>(s.x.rows()), s.triangles, s.labels);
+  planes.factorize(L);
+  EXPECT_LT((planes.solve(L * s.x) - s.x).cwiseAbs().maxCoeff(), 1e-7);
+}
+
+// A collapsed triangle's corners share a second coordinate: it lies on a
+// line; only the axis that changed is factorised again.
+TEST(ChartPlanes, CollapsePutsATriangleOnALine) {
+  const Block s = noisy_l_block(0.05);
+  const Eigen::SparseMatrix<double> L = shifted_laplacian(s);
+  ChartPlanes planes(static_cast<int>(s.x.rows()), s.triangles, s.labels);
+  planes.factorize(L);
+  const Eigen::Index t = 0;
+  const int other = (s.labels[t] / 2 + 1) % 3;
+  planes.collapse(t, other);
+  planes.factorize(L);
+  EXPECT_EQ(planes.factorizations(), 4);
+  const Vertices flat = planes.solve(L * s.x);
+  const Eigen::Vector3d a = flat.row(s.triangles(t, 0)), b = flat.row(s.triangles(t, 1)), c = flat.row(s.triangles(t, 2));
+  EXPECT_LT((b - a).cross(c - a).norm(), 1e-12);
+  EXPECT_NEAR(a[other], b[other], 1e-12);
+  EXPECT_NEAR(a[other], c[other], 1e-12);
+}
+
+// Labels that ask for the impossible (the elephant's nearest-axis labels:
+// 136 one-face charts) would collapse most of the surface: refused.
+TEST(FlattenCharts, RefusesWhatWouldCrushTheModel) {
+  const std::string path = std::string(POLYCUBE_MESH_DATA) + "/elephant.off";
+  if (!std::ifstream(path).good()) GTEST_SKIP() << "elephant.off is missing: run `make data`";
+  const PolygonMesh mesh = read_mesh(path);
+  const Triangulation t = triangulate(mesh.vertices, mesh.faces);
+  std::vector<int> labels;
+  const std::vector<int> nearest = nearest_labels(mesh);
+  for (Eigen::Index i = 0; i < t.triangles.rows(); ++i) labels.push_back(nearest[t.face_of_triangle[i]]);
+  const CotangentWeights weights = cotangent_weights(mesh.vertices, t.triangles).cwiseMax(0.0);
+  Laplacian laplacian(static_cast<int>(mesh.vertices.rows()), t.triangles);
+  const double shift = laplacian.assemble(weights, 1e-8);
+  const QualityMeasure quality(mesh.vertices, t.triangles, labels);
+  const FlatCharts flat = flatten_charts(mesh.vertices, mesh.vertices, t.triangles, labels, weights,
+                                         laplacian.matrix(), shift, quality, [](const Eigen::MatrixX3d& y) { return y; });
+  EXPECT_FALSE(flat.found);
+  EXPECT_GT(flat.collapsed_area, kMaxCollapsedAreaFraction);
+}
+
+// Once the robust variant has flattened the charts, every later iteration
+// (the relaxation) is an exact polycube with nothing folded, and relaxing
+// does not raise the edge error.
+TEST(FlattenCharts, RelaxationStaysExactAndFoldFree) {
+  const std::string path = std::string(POLYCUBE_MESH_DATA) + "/mesh_with_border.off";
+  if (!std::ifstream(path).good()) GTEST_SKIP() << "mesh_with_border.off is missing: run `make data`";
+  const PolygonMesh mesh = read_mesh(path);
+  DeformOptions options;
+  options.iterations = 200;
+  std::vector<Figures> seen;
+  const DeformResult r = deform(mesh, nearest_labels(mesh), options, [&](int, const Vertices&, const Figures& f) {
+    seen.push_back(f);
+    return true;
+  });
+  ASSERT_TRUE(r.converged);
+  ASSERT_GT(r.flat_iteration, 0);
+  ASSERT_GT(r.iterations, r.flat_iteration);  // it relaxed
+  double edge = seen[r.flat_iteration - 1].edge_error;
+  for (size_t i = r.flat_iteration - 1; i < seen.size(); ++i) {
+    EXPECT_EQ(seen[i].normal_deviation_max_deg, 0.0);
+    EXPECT_EQ(seen[i].flipped_faces, 0);
+    EXPECT_LE(seen[i].edge_error, edge + 1e-9);
+    edge = seen[i].edge_error;
+  }
+  EXPECT_LT(r.figures.edge_error, 0.9 * seen[r.flat_iteration - 1].edge_error);
+}
+
+}  // namespace
