@@ -137,7 +137,7 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
 
   Laplacian laplacian(n, triangles);
   SparseCholesky factorization;
-  factorization.analyze(laplacian.matrix());
+  factorization.analyze(laplacian.matrix(), options.variant == Variant::kCurrent);
   Eigen::MatrixX3d solution(n, 3);
   // Puts a solution back where the mesh stands: every component's centroid
   // where it was, isolated vertices where they were.
@@ -277,7 +277,7 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
           if (step.limited > 0) {
             const CotangentWeights current = cotangent_weights(x, triangles).cwiseMax(0.0);
             const double current_shift = current_laplacian.assemble(current, kRelativeShift);
-            if (!current_analyzed) current_factorization.analyze(current_laplacian.matrix());
+            if (!current_analyzed) current_factorization.analyze(current_laplacian.matrix(), true);
             current_analyzed = true;
             result.seconds.assemble += phase.lap();
             current_factorization.factorize(current_laplacian.matrix());

@@ -21,12 +21,16 @@ struct SparseCholesky::Backends {
 SparseCholesky::SparseCholesky() : backends_(std::make_unique<Backends>()) {}
 SparseCholesky::~SparseCholesky() = default;
 
-void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& matrix) {
+void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& matrix, bool reused) {
   rows_ = matrix.rows();
   backends_ = std::make_unique<Backends>();
 #ifdef POLYCUBE_WITH_CHOLMOD
   if (matrix.rows() >= kSupernodalThreshold) {
     backends_->supernodal = std::make_unique<Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>>>();
+    if (!reused) {
+      backends_->supernodal->cholmod().nmethods = 1;
+      backends_->supernodal->cholmod().method[0].ordering = CHOLMOD_AMD;
+    }
     backends_->supernodal->analyzePattern(matrix);
     if (backends_->supernodal->info() == Eigen::Success) return;
     backends_->supernodal.reset();
