@@ -216,6 +216,8 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
                                          shift, quality, place);
         result.seconds.factorize += phase.lap();  // nearly all of it
         result.factorizations += flat.planes->factorizations();
+        result.flatten_attempts.push_back(
+            {iteration, flat.rounds, flat.states.flipped_count, flat.collapsed_area, flat.found});
         if (!flat.found) return;
         x = std::move(flat.positions);
         state = std::move(flat.states);

@@ -100,6 +100,14 @@ struct DeformResult {
   // on purpose there to undo folds.
   int flat_iteration = 0;
   int collapsed_on_purpose = 0;
+  // Every attempt at flattening, kept or refused: why a run did not become
+  // exact (too much area collapsed, or folds left after every round).
+  struct FlattenAttempt {
+    int iteration = 0, rounds = 0, folds_left = 0;
+    double collapsed_area = 0.0;  // share of the input's area
+    bool kept = false;
+  };
+  std::vector<FlattenAttempt> flatten_attempts;
   int factorizations = 0;   // numeric factorisations of a Laplacian
   std::string solver;       // the factorisation used (sparse_cholesky.h)
   PhaseSeconds seconds;

@@ -45,6 +45,16 @@ JsonWriter deform_report(const PolygonMesh& mesh, const DeformResult& r, const D
   add_faces(json, "unconverged_faces", r.unconverged_faces);
   add_faces(json, "flipped_face_ids", r.flipped_faces);
   add_faces(json, "relabelled_faces", r.relabelled_faces);
+  json.begin_array("flatten_attempts");
+  for (const auto& a : r.flatten_attempts)
+    json.begin_object()
+        .add("iteration", a.iteration)
+        .add("rounds", a.rounds)
+        .add("folds_left", a.folds_left)
+        .add("collapsed_area", a.collapsed_area)
+        .add("kept", a.kept)
+        .end();
+  json.end();
   json.begin_object("seconds")
       .add("total", r.seconds.total)
       .add("assemble", r.seconds.assemble)
