@@ -1,7 +1,9 @@
 #include "core/flatten_charts.h"
 
 #include <algorithm>
+#include <array>
 #include <limits>
+#include <numeric>
 
 #include "core/fitted_rotations.h"
 #include "core/rotated_edges_rhs.h"
@@ -9,24 +11,55 @@
 namespace polycube {
 namespace {
 
-// The coordinate, other than the triangle's own axis, in which its corners
-// are closest: collapsing it there moves them least.
-int thinnest_axis(const Vertices& x, const Triangles& triangles, Eigen::Index t, int own_axis) {
-  int best_axis = (own_axis + 1) % 3;
-  double best = std::numeric_limits<double>::infinity();
-  for (int axis = 0; axis < 3; ++axis) {
-    if (axis == own_axis) continue;
-    double lo = x(triangles(t, 0), axis), hi = lo;
-    for (int k = 1; k < 3; ++k) {
-      lo = std::min(lo, x(triangles(t, k), axis));
-      hi = std::max(hi, x(triangles(t, k), axis));
-    }
-    if (hi - lo < best) {
-      best = hi - lo;
-      best_axis = axis;
+int find_root(std::vector<int>& parent, int t) {
+  while (parent[t] != t) {
+    parent[t] = parent[parent[t]];
+    t = parent[t];
+  }
+  return t;
+}
+
+// The coordinate in which to collapse each flipped triangle. Flipped
+// triangles of one axis that share a corner fold together (a strip of
+// slivers, many rows of them on a refined mesh): each such group collapses
+// along one coordinate, the one other than its axis in which its corners
+// (in `x`) spread least, so that the group becomes a line rather than
+// points, and moves least. -1 for triangles not flipped.
+std::vector<int> collapse_axes(const Vertices& x, const Triangles& triangles, const std::vector<int>& labels,
+                               const std::vector<char>& flipped) {
+  const Eigen::Index count = triangles.rows();
+  std::vector<int> parent(count);
+  std::iota(parent.begin(), parent.end(), 0);
+  std::vector<std::array<int, 3>> owner(x.rows(), {-1, -1, -1});  // per vertex and axis: a flipped triangle
+  for (Eigen::Index t = 0; t < count; ++t) {
+    if (!flipped[t]) continue;
+    const int axis = labels[t] / 2;
+    for (int k = 0; k < 3; ++k) {
+      int& o = owner[triangles(t, k)][axis];
+      if (o < 0) o = static_cast<int>(t);
+      else parent[find_root(parent, static_cast<int>(t))] = find_root(parent, o);
     }
   }
-  return best_axis;
+  std::vector<Eigen::Vector3d> lo(count, Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()));
+  std::vector<Eigen::Vector3d> hi(count, Eigen::Vector3d::Constant(-std::numeric_limits<double>::infinity()));
+  for (Eigen::Index t = 0; t < count; ++t) {
+    if (!flipped[t]) continue;
+    const int root = find_root(parent, static_cast<int>(t));
+    for (int k = 0; k < 3; ++k) {
+      lo[root] = lo[root].cwiseMin(x.row(triangles(t, k)).transpose());
+      hi[root] = hi[root].cwiseMax(x.row(triangles(t, k)).transpose());
+    }
+  }
+  std::vector<int> axes(count, -1);
+  for (Eigen::Index t = 0; t < count; ++t) {
+    if (!flipped[t]) continue;
+    const int root = find_root(parent, static_cast<int>(t));
+    const int own = labels[t] / 2;
+    Eigen::Vector3d spread = hi[root] - lo[root];
+    spread[own] = std::numeric_limits<double>::infinity();
+    spread.minCoeff(&axes[t]);
+  }
+  return axes;
 }
 
 Eigen::MatrixX3d fitted_rhs(const Vertices& input, const Vertices& current, const Triangles& triangles,
@@ -122,9 +155,10 @@ FlatCharts flatten_charts(const Vertices& input, const Vertices& current, const 
       return result;
     }
     verify = false;
+    const std::vector<int> axes = collapse_axes(current, triangles, triangle_labels, result.states.flipped);
     for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
-      if (!result.states.flipped[t]) continue;
-      result.planes->collapse(t, thinnest_axis(current, triangles, t, triangle_labels[t] / 2));
+      if (axes[t] < 0) continue;
+      result.planes->collapse(t, axes[t]);
       ++result.collapsed_on_purpose;
     }
   }

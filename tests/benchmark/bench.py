@@ -71,7 +71,8 @@ def scipy_seconds(mesh, labels, variant, iterations, limit):
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--build", default=str(ROOT / "build"))
-    parser.add_argument("--iterations", type=int, default=200)
+    parser.add_argument("--iterations", type=int, default=100,
+                        help="iteration limit of every run (runs that do not reach the tolerance stop there)")
     parser.add_argument("--tolerance", type=float, default=0.5)
     parser.add_argument("--default-variant", default="robust")
     parser.add_argument("--scipy-iterations", type=int, default=5, help="SciPy iterations actually timed")

@@ -14,20 +14,20 @@ ROOT = pathlib.Path(__file__).resolve().parents[2]
 MESHES = ROOT / "build" / "data" / "meshes"
 SHARED = ROOT.parent / "shared" / "data"
 
-# (name, mesh, labels): labels "nearest" or a labels file.
-CORPUS = [
-    ("fandisk", MESHES / "fandisk.off", "nearest"),
-    ("elephant", MESHES / "elephant.off", "nearest"),
-    ("eight", MESHES / "eight.off", "nearest"),
-    ("larger_sphere", MESHES / "larger_sphere.off", "nearest"),
-    ("mesh_with_border", MESHES / "mesh_with_border.off", "nearest"),
+# (name, mesh, labels): labels "nearest", "auto" (the automatic labeller) or a
+# labels file. Issue 6's table: its models with nearest-axis and automatic
+# labels, the published labelings, then other libcgal-demo models.
+LIBCGAL = ["fandisk", "elephant", "eight", "larger_sphere", "mesh_with_border", "cactus", "joint", "anchor",
+           "double-torus-example"]
+CORPUS = [(name, MESHES / f"{name}.off", labels) for name in LIBCGAL for labels in ("nearest", "auto")] + [
     ("B0", SHARED / "B0" / "surface.obj", SHARED / "B0" / "labeling.txt"),
     ("bone", SHARED / "bone" / "surface.obj", SHARED / "bone" / "labeling.txt"),
+    ("bone", SHARED / "bone" / "surface.obj", "auto"),
 ]
 
 COLUMNS = [
     ("model", "{model}"), ("labels", "{labels}"), ("triangles", "{triangles}"), ("variant", "{variant}"),
-    ("iterations", "{iterations}"), ("converged", "{converged}"),
+    ("iterations", "{iterations}"), ("flat at", "{flat_iteration}"), ("converged", "{converged}"),
     ("max deg", "{normal_deviation_max_deg:.3f}"), ("mean deg", "{normal_deviation_mean_deg:.4f}"),
     ("edge err", "{edge_error:.4f}"), ("area err", "{area_error:.4f}"),
     ("flipped", "{flipped_faces}"), ("collapsed", "{collapsed_faces}"),
@@ -40,7 +40,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--variants", default="robust,fixed,current")
     parser.add_argument("--iterations", type=int, default=200)
-    parser.add_argument("--models", default=",".join(name for name, _, _ in CORPUS))
+    parser.add_argument("--models", default=",".join(dict.fromkeys(name for name, _, _ in CORPUS)))
     parser.add_argument("--program", default=str(ROOT / "build" / "polycube"))
     args = parser.parse_args()
     print("| " + " | ".join(title for title, _ in COLUMNS) + " |")
@@ -58,7 +58,7 @@ def main():
                 print(f"| {name} | {variant} | failed: {run.stderr.strip()} |")
                 continue
             report = json.loads(run.stdout)
-            row = dict(report, model=name, labels="nearest" if labels == "nearest" else "published",
+            row = dict(report, model=name, labels=labels if labels in ("nearest", "auto") else "published",
                        **{f"s_{k}": v for k, v in report["seconds"].items()})
             print("| " + " | ".join(fmt.format(**row) for _, fmt in COLUMNS) + " |", flush=True)
 
