@@ -230,6 +230,8 @@ def _print_report(package, report):
     print(f"  shape keys {len(report['kept_iterations'])}  "
           f"seconds: read {seconds['read']:.3f}  solve {seconds['deform_call']:.3f}  "
           f"write {seconds['write']:.3f}")
+    for line in package.report.advice(report):
+        print(f"  {line}")
 
 
 def _ensure_folder(path):

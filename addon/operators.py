@@ -12,7 +12,7 @@ import bpy
 
 from . import polycube_native, preferences
 from .object_run import ObjectRun
-from .report import failure, outcome
+from .report import advice, failure, outcome
 from .settings import DeformSettings
 from .solver_thread import SolverThread
 from .subdivide import source_object
@@ -222,7 +222,9 @@ def _select_copies(context, reports):
 
 
 def _summary(report):
-    return (f"'{report['object']}': {outcome(report)} after {report['iterations']} iterations, "
-            f"max normal deviation {report['normal_deviation_max_deg']:.3f}°, "
-            f"{report['flipped_faces']} flipped faces, "
-            f"{len(report['kept_iterations'])} shape keys.")
+    summary = (f"'{report['object']}': {outcome(report)} after {report['iterations']} iterations, "
+               f"max normal deviation {report['normal_deviation_max_deg']:.3f}°, "
+               f"{report['flipped_faces']} flipped faces, "
+               f"{len(report['kept_iterations'])} shape keys.")
+    hint = advice(report)
+    return f"{summary} Not a polycube yet: {'; '.join(hint).lower()}." if hint else summary

@@ -10,7 +10,7 @@ from .label_operators import (
     OBJECT_OT_polycube_auto_label, OBJECT_OT_polycube_label_colours, OBJECT_OT_polycube_validate_labels)
 from .operators import OBJECT_OT_polycube_deform
 from .polycube_native import LABEL_NAMES
-from .report import load_report, outcome
+from .report import advice, load_report, outcome
 from .scrub import shown_iteration
 from .shape_keys import polycube_keys
 from .unconverged import OBJECT_OT_polycube_select_unconverged, unconverged_count
@@ -123,6 +123,12 @@ def _draw_report(layout, report):
     if report.get("flat_iteration"):
         rows += (("Charts flat from", f"iteration {report['flat_iteration']}"),)
     _draw_rows(layout, rows)
+    hint = advice(report)
+    if hint:
+        box = layout.box()
+        box.label(text="Not a polycube yet", icon='ERROR')
+        for line in hint:
+            box.label(text=line)
     if unconverged:
         layout.operator(OBJECT_OT_polycube_select_unconverged.bl_idname, icon='RESTRICT_SELECT_OFF')
 

@@ -54,6 +54,23 @@ def outcome(report):
     return "converged" if report["converged"] else "not converged"
 
 
+def advice(report):
+    """Short lines on what to try when the run did not become an exact
+    polycube; empty when it did (or was stopped).
+
+    The robust solver flattens the charts once it is close; when every attempt
+    would crush part of the model (or leaves folds), the labels ask for more
+    than the mesh can give, and better labels are the way out."""
+    if report.get("converged") or report.get("stopped"):
+        return []
+    refused = [attempt for attempt in report.get("flatten_attempts") or () if not attempt.get("kept")]
+    if not refused:
+        return []
+    crushed = max(attempt.get("collapsed_area", 0.0) for attempt in refused)
+    return [f"Flat charts would collapse {100 * crushed:.0f}% of the surface",
+            "Try Auto Label, or relabel the unconverged faces"]
+
+
 def _plain(value):
     # ID properties take Python scalars, strings, lists and dicts, not numpy types.
     if isinstance(value, dict):

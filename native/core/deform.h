@@ -41,7 +41,7 @@ namespace polycube {
 //    flat charts. Every face then has its axis' normal exactly: fandisk,
 //    eight, bone, mesh_with_border, cactus, double-torus-example converge in
 //    6 to 60 iterations instead of stalling 3 to 47 degrees off after 200;
-//    the price is more collapsed slivers than `fixed` (fandisk 160 against
+//    the price is more collapsed slivers than `fixed` (fandisk 157 against
 //    61, 1% of the area);
 // 4. where the labels ask for more than slivers (flattening would collapse
 //    over a fifth of the surface: elephant, anchor, armadillo, bunny00 with

@@ -221,6 +221,16 @@ def test_fandisk_off_from_libcgal_demo():
     assert "6475 vertices, 12946 faces" in done.stdout and "flipped faces 0" in done.stdout
 
 
+def test_labels_that_cannot_be_flattened_get_advice():
+    # The elephant's nearest-axis labels: flattening would crush a third of it.
+    done = _headless("--input", os.path.join(MESHES, "elephant.off"), "--iterations", "40")
+    assert done.returncode == 0, done.stderr
+    assert "not converged" in done.stdout and "flipped faces 0" in done.stdout, done.stdout
+    match = re.search(r"Flat charts would collapse (\d+)% of the surface", done.stdout)
+    assert match and int(match.group(1)) > 20, done.stdout
+    assert "Try Auto Label" in done.stdout
+
+
 def test_bad_input_gives_a_message_and_a_failing_status():
     missing = _headless("--input", os.path.join(TMP, "nothing.off"))
     assert missing.returncode != 0 and "no such file" in missing.stderr
