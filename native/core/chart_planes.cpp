@@ -1,7 +1,6 @@
 #include "core/chart_planes.h"
 
 #include <algorithm>
-#include <numeric>
 
 #include "core/sparse_cholesky.h"
 
@@ -9,29 +8,15 @@ namespace polycube {
 
 ChartPlanes::ChartPlanes(int vertex_count, const Triangles& triangles, const std::vector<int>& triangle_labels)
     : triangles_(triangles) {
-  for (auto& parent : parent_) {
-    parent.resize(vertex_count);
-    std::iota(parent.begin(), parent.end(), 0);
-  }
+  sets_.fill(UnionFind(vertex_count));
   for (Eigen::Index t = 0; t < triangles.rows(); ++t)
     if (triangle_labels[t] >= 0) collapse(t, triangle_labels[t] / 2);
 }
 
-int ChartPlanes::root(int axis, int v) const {
-  std::vector<int>& parent = parent_[axis];
-  while (parent[v] != v) {
-    parent[v] = parent[parent[v]];
-    v = parent[v];
-  }
-  return v;
-}
+int ChartPlanes::root(int axis, int v) const { return sets_[axis].root(v); }
 
 void ChartPlanes::join(int axis, int a, int b) {
-  a = root(axis, a);
-  b = root(axis, b);
-  if (a == b) return;
-  parent_[axis][std::max(a, b)] = std::min(a, b);
-  changed_[axis] = true;
+  if (sets_[axis].join(a, b)) changed_[axis] = true;
 }
 
 void ChartPlanes::collapse(Eigen::Index t, int axis) {

@@ -25,6 +25,7 @@
 
 #include "core/mesh.h"
 #include "core/sparse_cholesky.h"
+#include "core/union_find.h"
 
 namespace polycube {
 
@@ -60,7 +61,7 @@ class ChartPlanes {
   void join(int axis, int a, int b);
 
   Triangles triangles_;
-  mutable std::array<std::vector<int>, 3> parent_;  // union-find per axis, paths halved on lookup
+  mutable std::array<UnionFind, 3> sets_;  // per axis: vertices sharing that coordinate
   std::array<std::vector<int>, 3> unknown_;         // per axis and vertex: its unknown
   std::array<std::unique_ptr<SparseCholesky>, 3> cholesky_;
   std::array<bool, 3> changed_ = {true, true, true};

@@ -3,33 +3,29 @@
 #include <algorithm>
 #include <map>
 
+#include "core/union_find.h"
+
 namespace polycube {
 
 Charts charts(const MeshAdjacency& adjacency, const std::vector<int>& labels) {
   const int face_count = static_cast<int>(labels.size());
-  // Union-find that keeps the lowest face as root, so numbering roots in face
-  // order numbers charts by their lowest face. No per-call graph is built: the
-  // repair step calls this many times.
-  std::vector<int> parent(face_count);
-  for (int f = 0; f < face_count; ++f) parent[f] = f;
-  auto root = [&parent](int f) {
-    while (parent[f] != f) f = parent[f] = parent[parent[f]];
-    return f;
-  };
+  // Roots are the lowest faces, so numbering roots in face order numbers
+  // charts by their lowest face. No per-call graph is built: the repair step
+  // calls this many times.
+  UnionFind sets(face_count);
   for (int e = 0; e < adjacency.edge_count(); ++e) {
     const int begin = adjacency.edge_offsets[e], end = adjacency.edge_offsets[e + 1];
     for (int i = begin; i < end; ++i)
       for (int j = i + 1; j < end; ++j) {
         const int a = adjacency.edge_faces[i], b = adjacency.edge_faces[j];
         if (labels[a] != labels[b]) continue;
-        const int ra = root(a), rb = root(b);
-        if (ra != rb) parent[std::max(ra, rb)] = std::min(ra, rb);
+        sets.join(a, b);
       }
   }
   Charts result;
   result.of_face.assign(face_count, -1);
   for (int f = 0; f < face_count; ++f) {
-    const int r = root(f);
+    const int r = sets.root(f);
     if (r == f) {
       result.of_face[f] = result.count();
       result.label.push_back(labels[f]);

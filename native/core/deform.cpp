@@ -298,10 +298,7 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
           exact = true;
           try_flatten(iteration);
         }
-        // Attempts at flattening the charts (flatten_charts.h): when the fitting
-// phase ends, then when progress stalls, each after a label repair.
-constexpr int kMaxFlattenAttempts = 3;
-// Stalled: the largest deviation has not improved for a while. Faces
+        // Stalled: the largest deviation has not improved for a while. Faces
         // held back by the step control are the usual reason: repair their
         // labels where a neighbour's label fits them (label_repair.h).
         if (state.max_deviation_deg < best_max * (1.0 - kProgress)) {

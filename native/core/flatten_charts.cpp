@@ -3,21 +3,13 @@
 #include <algorithm>
 #include <array>
 #include <limits>
-#include <numeric>
 
 #include "core/fitted_rotations.h"
 #include "core/rotated_edges_rhs.h"
+#include "core/union_find.h"
 
 namespace polycube {
 namespace {
-
-int find_root(std::vector<int>& parent, int t) {
-  while (parent[t] != t) {
-    parent[t] = parent[parent[t]];
-    t = parent[t];
-  }
-  return t;
-}
 
 // The coordinate in which to collapse each flipped triangle. Flipped
 // triangles of one axis that share a corner fold together (a strip of
@@ -28,8 +20,7 @@ int find_root(std::vector<int>& parent, int t) {
 std::vector<int> collapse_axes(const Vertices& x, const Triangles& triangles, const std::vector<int>& labels,
                                const std::vector<char>& flipped) {
   const Eigen::Index count = triangles.rows();
-  std::vector<int> parent(count);
-  std::iota(parent.begin(), parent.end(), 0);
+  UnionFind groups(static_cast<int>(count));
   std::vector<std::array<int, 3>> owner(x.rows(), {-1, -1, -1});  // per vertex and axis: a flipped triangle
   for (Eigen::Index t = 0; t < count; ++t) {
     if (!flipped[t]) continue;
@@ -37,14 +28,14 @@ std::vector<int> collapse_axes(const Vertices& x, const Triangles& triangles, co
     for (int k = 0; k < 3; ++k) {
       int& o = owner[triangles(t, k)][axis];
       if (o < 0) o = static_cast<int>(t);
-      else parent[find_root(parent, static_cast<int>(t))] = find_root(parent, o);
+      else groups.join(static_cast<int>(t), o);
     }
   }
   std::vector<Eigen::Vector3d> lo(count, Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()));
   std::vector<Eigen::Vector3d> hi(count, Eigen::Vector3d::Constant(-std::numeric_limits<double>::infinity()));
   for (Eigen::Index t = 0; t < count; ++t) {
     if (!flipped[t]) continue;
-    const int root = find_root(parent, static_cast<int>(t));
+    const int root = groups.root(static_cast<int>(t));
     for (int k = 0; k < 3; ++k) {
       lo[root] = lo[root].cwiseMin(x.row(triangles(t, k)).transpose());
       hi[root] = hi[root].cwiseMax(x.row(triangles(t, k)).transpose());
@@ -53,7 +44,7 @@ std::vector<int> collapse_axes(const Vertices& x, const Triangles& triangles, co
   std::vector<int> axes(count, -1);
   for (Eigen::Index t = 0; t < count; ++t) {
     if (!flipped[t]) continue;
-    const int root = find_root(parent, static_cast<int>(t));
+    const int root = groups.root(static_cast<int>(t));
     const int own = labels[t] / 2;
     Eigen::Vector3d spread = hi[root] - lo[root];
     spread[own] = std::numeric_limits<double>::infinity();
