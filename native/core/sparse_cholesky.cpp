@@ -27,6 +27,9 @@ void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& matrix, bool reu
 #ifdef POLYCUBE_WITH_CHOLMOD
   if (matrix.rows() >= kSupernodalThreshold) {
     backends_->supernodal = std::make_unique<Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>>>();
+    // CHOLMOD prints its warnings ("not positive definite") on stdout, where
+    // the program writes its JSON report; a failure is handled below.
+    backends_->supernodal->cholmod().print = 0;
     if (!reused) {
       backends_->supernodal->cholmod().nmethods = 1;
       backends_->supernodal->cholmod().method[0].ordering = CHOLMOD_AMD;
