@@ -41,10 +41,10 @@ namespace polycube {
 //    flat charts. Every face then has its axis' normal exactly: fandisk,
 //    eight, bone, mesh_with_border, cactus, double-torus-example converge in
 //    6 to 60 iterations instead of stalling 3 to 47 degrees off after 200;
-//    the price is more collapsed slivers than `fixed` (fandisk 157 against
+//    the price is more collapsed slivers than `fixed` (fandisk 165 against
 //    61, 1% of the area);
 // 4. where the labels ask for more than slivers (flattening would collapse
-//    over a fifth of the surface: elephant, anchor, armadillo, bunny00 with
+//    over an eighth of the surface: elephant, anchor, armadillo, bunny00 with
 //    nearest-axis labels), the continuous iteration goes on: the paper's step
 //    with the input Laplacian, or, where that would fold a face, with the
 //    current mesh's Laplacian, which collapses faces without turning them;

@@ -1,56 +1,32 @@
 #include "core/flatten_charts.h"
 
 #include <algorithm>
-#include <array>
 #include <limits>
 
 #include "core/fitted_rotations.h"
 #include "core/rotated_edges_rhs.h"
-#include "core/union_find.h"
 
 namespace polycube {
 namespace {
 
-// The coordinate in which to collapse each flipped triangle. Flipped
-// triangles of one axis that share a corner fold together (a strip of
-// slivers, many rows of them on a refined mesh): each such group collapses
-// along one coordinate, the one other than its axis in which its corners
-// (in `x`) spread least, so that the group becomes a line rather than
-// points, and moves least. -1 for triangles not flipped.
-std::vector<int> collapse_axes(const Vertices& x, const Triangles& triangles, const std::vector<int>& labels,
-                               const std::vector<char>& flipped) {
-  const Eigen::Index count = triangles.rows();
-  UnionFind groups(static_cast<int>(count));
-  std::vector<std::array<int, 3>> owner(x.rows(), {-1, -1, -1});  // per vertex and axis: a flipped triangle
-  for (Eigen::Index t = 0; t < count; ++t) {
-    if (!flipped[t]) continue;
-    const int axis = labels[t] / 2;
-    for (int k = 0; k < 3; ++k) {
-      int& o = owner[triangles(t, k)][axis];
-      if (o < 0) o = static_cast<int>(t);
-      else groups.join(static_cast<int>(t), o);
+// The coordinate, other than the triangle's own axis, in which its corners
+// are closest: collapsing it there moves them least.
+int thinnest_axis(const Vertices& x, const Triangles& triangles, Eigen::Index t, int own_axis) {
+  int best_axis = (own_axis + 1) % 3;
+  double best = std::numeric_limits<double>::infinity();
+  for (int axis = 0; axis < 3; ++axis) {
+    if (axis == own_axis) continue;
+    double lo = x(triangles(t, 0), axis), hi = lo;
+    for (int k = 1; k < 3; ++k) {
+      lo = std::min(lo, x(triangles(t, k), axis));
+      hi = std::max(hi, x(triangles(t, k), axis));
+    }
+    if (hi - lo < best) {
+      best = hi - lo;
+      best_axis = axis;
     }
   }
-  std::vector<Eigen::Vector3d> lo(count, Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()));
-  std::vector<Eigen::Vector3d> hi(count, Eigen::Vector3d::Constant(-std::numeric_limits<double>::infinity()));
-  for (Eigen::Index t = 0; t < count; ++t) {
-    if (!flipped[t]) continue;
-    const int root = groups.root(static_cast<int>(t));
-    for (int k = 0; k < 3; ++k) {
-      lo[root] = lo[root].cwiseMin(x.row(triangles(t, k)).transpose());
-      hi[root] = hi[root].cwiseMax(x.row(triangles(t, k)).transpose());
-    }
-  }
-  std::vector<int> axes(count, -1);
-  for (Eigen::Index t = 0; t < count; ++t) {
-    if (!flipped[t]) continue;
-    const int root = groups.root(static_cast<int>(t));
-    const int own = labels[t] / 2;
-    Eigen::Vector3d spread = hi[root] - lo[root];
-    spread[own] = std::numeric_limits<double>::infinity();
-    spread.minCoeff(&axes[t]);
-  }
-  return axes;
+  return best_axis;
 }
 
 Eigen::MatrixX3d fitted_rhs(const Vertices& input, const Vertices& current, const Triangles& triangles,
@@ -66,8 +42,8 @@ Eigen::MatrixX3d fitted_rhs(const Vertices& input, const Vertices& current, cons
 constexpr int kRegionRings = 4;
 // Progress: a fifth fewer folds than the fewest so far, at least every
 // kRoundsWithoutProgress rounds.
-constexpr double kProgress = 0.8;
-constexpr int kRoundsWithoutProgress = 6;
+constexpr double kProgress = 0.9;
+constexpr int kRoundsWithoutProgress = 8;
 
 }  // namespace
 
@@ -146,10 +122,9 @@ FlatCharts flatten_charts(const Vertices& input, const Vertices& current, const 
       return result;
     }
     verify = false;
-    const std::vector<int> axes = collapse_axes(current, triangles, triangle_labels, result.states.flipped);
     for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
-      if (axes[t] < 0) continue;
-      result.planes->collapse(t, axes[t]);
+      if (!result.states.flipped[t]) continue;
+      result.planes->collapse(t, thinnest_axis(current, triangles, t, triangle_labels[t] / 2));
       ++result.collapsed_on_purpose;
     }
   }
