@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "core/triangle_incidence.h"
+
 namespace polycube {
 namespace {
 
@@ -10,20 +12,6 @@ namespace {
 // ring of triangles, and so on (bunny00's first step: a ring growing by ~40
 // triangles a round, on and on).
 constexpr int kMaxHoldRounds = 10;
-
-// Triangles around each vertex, so a round re-measures only what it moved.
-struct Incidence {
-  std::vector<int> offsets, triangles;
-  Incidence(Eigen::Index vertex_count, const Triangles& t) : offsets(vertex_count + 1, 0) {
-    for (Eigen::Index f = 0; f < t.rows(); ++f)
-      for (int k = 0; k < 3; ++k) ++offsets[t(f, k) + 1];
-    for (Eigen::Index v = 0; v < vertex_count; ++v) offsets[v + 1] += offsets[v];
-    triangles.resize(offsets.back());
-    std::vector<int> next(offsets.begin(), offsets.end() - 1);
-    for (Eigen::Index f = 0; f < t.rows(); ++f)
-      for (int k = 0; k < 3; ++k) triangles[next[t(f, k)]++] = static_cast<int>(f);
-  }
-};
 
 std::vector<Eigen::Index> new_folds(const FaceStates& states, const FaceStates& from_states) {
   std::vector<Eigen::Index> folds;
@@ -55,7 +43,7 @@ void shorten_whole_step(const Vertices& from, const FaceStates& from_states, con
 FoldFreeStep fold_free_step(const Vertices& from, const FaceStates& from_states, const Vertices& to,
                             const Triangles& triangles, const QualityMeasure& measure, int max_halvings) {
   const Eigen::Index n = from.rows();
-  const Incidence incidence(n, triangles);
+  const TriangleIncidence incidence(n, triangles);  // a round re-measures only what it moved
   std::vector<double> alpha(n, 1.0);
   std::vector<int> stamp(triangles.rows(), -1);
   FoldFreeStep step;
