@@ -3,7 +3,7 @@
 #include <charconv>
 #include <cmath>
 
-#include "core/mesh.h"
+#include "mesh/mesh.h"
 
 namespace polycube {
 

@@ -4,8 +4,8 @@
 #include "cli/arguments.h"
 #include "cli/commands.h"
 #include "cli/label_source.h"
-#include "core/auto_labels.h"
-#include "core/validate_labels.h"
+#include "labels/auto_labels.h"
+#include "labels/validate_labels.h"
 #include "io/labels_io.h"
 #include "io/read_mesh.h"
 

@@ -2,9 +2,9 @@
 
 #include <cstdio>
 
-#include "core/auto_labels.h"
-#include "core/nearest_labels.h"
-#include "core/orientation.h"
+#include "labels/auto_labels.h"
+#include "labels/nearest_labels.h"
+#include "labels/orientation.h"
 #include "io/labels_io.h"
 
 namespace polycube {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "core/mesh.h"
+#include "mesh/mesh.h"
 
 namespace polycube {
 

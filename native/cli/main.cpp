@@ -6,7 +6,7 @@
 #include <new>
 
 #include "cli/commands.h"
-#include "core/mesh.h"
+#include "mesh/mesh.h"
 
 namespace {
 

@@ -3,7 +3,7 @@
 
 #include "cli/arguments.h"
 #include "cli/commands.h"
-#include "core/refine.h"
+#include "refine/refine.h"
 #include "io/labels_io.h"
 #include "io/read_mesh.h"
 #include "io/write_mesh.h"

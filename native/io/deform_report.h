@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "core/deform.h"
+#include "deform/deform.h"
 #include "io/json_writer.h"
 
 namespace polycube {

@@ -6,7 +6,7 @@
 #include <charconv>
 #include <string_view>
 
-#include "core/mesh.h"
+#include "mesh/mesh.h"
 #include "io/read_mesh.h"
 #include "io/write_mesh.h"
 

@@ -1,6 +1,6 @@
 #include "io/labels_report.h"
 
-#include "core/axis.h"
+#include "labels/axis.h"
 
 namespace polycube {
 

@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "core/orientation.h"
-#include "core/validate_labels.h"
+#include "labels/orientation.h"
+#include "labels/validate_labels.h"
 #include "io/json_writer.h"
 
 namespace polycube {

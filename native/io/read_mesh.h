@@ -10,7 +10,7 @@
 
 #include <string>
 
-#include "core/mesh.h"
+#include "mesh/mesh.h"
 
 namespace polycube {
 

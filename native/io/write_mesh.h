@@ -6,7 +6,7 @@
 #include <string>
 #include <string_view>
 
-#include "core/mesh.h"
+#include "mesh/mesh.h"
 
 namespace polycube {
 

@@ -6,15 +6,15 @@
 #include <fstream>
 #include <set>
 
-#include "core/axis.h"
-#include "core/chart_planes.h"
-#include "core/cotangent_weights.h"
-#include "core/deform.h"
-#include "core/flatten_charts.h"
-#include "core/laplacian.h"
-#include "core/nearest_labels.h"
-#include "core/quality.h"
-#include "core/triangulate.h"
+#include "labels/axis.h"
+#include "deform/chart_planes.h"
+#include "linear_algebra/cotangent_weights.h"
+#include "deform/deform.h"
+#include "deform/flatten_charts.h"
+#include "linear_algebra/laplacian.h"
+#include "labels/nearest_labels.h"
+#include "deform/quality.h"
+#include "mesh/triangulate.h"
 #include "io/read_mesh.h"
 #include "test_meshes.h"
 

@@ -2,8 +2,8 @@
 
 #include <fstream>
 
-#include "core/deform.h"
-#include "core/nearest_labels.h"
+#include "deform/deform.h"
+#include "labels/nearest_labels.h"
 #include "io/labels_io.h"
 #include "io/read_mesh.h"
 #include "test_meshes.h"

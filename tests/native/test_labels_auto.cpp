@@ -6,10 +6,10 @@
 #include <chrono>
 #include <fstream>
 
-#include "core/auto_labels.h"
-#include "core/deform.h"
-#include "core/orientation.h"
-#include "core/validate_labels.h"
+#include "labels/auto_labels.h"
+#include "deform/deform.h"
+#include "labels/orientation.h"
+#include "labels/validate_labels.h"
 #include "io/labels_io.h"
 #include "io/read_mesh.h"
 #include "test_meshes.h"

@@ -4,11 +4,11 @@
 
 #include <fstream>
 
-#include "core/axis.h"
-#include "core/nearest_labels.h"
-#include "core/orientation.h"
-#include "core/triangulate.h"
-#include "core/validate_labels.h"
+#include "labels/axis.h"
+#include "labels/nearest_labels.h"
+#include "labels/orientation.h"
+#include "mesh/triangulate.h"
+#include "labels/validate_labels.h"
 #include "io/labels_io.h"
 #include "io/read_mesh.h"
 #include "test_meshes.h"

@@ -2,8 +2,8 @@
 
 #include <Eigen/Dense>
 
-#include "core/laplacian.h"
-#include "core/triangulate.h"
+#include "linear_algebra/laplacian.h"
+#include "mesh/triangulate.h"
 #include "test_meshes.h"
 
 namespace {

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "core/mesh.h"
+#include "mesh/mesh.h"
 
 namespace polycube::test_meshes {
 

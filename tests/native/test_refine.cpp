@@ -3,10 +3,10 @@
 #include <Eigen/Geometry>
 #include <fstream>
 
-#include "core/deform.h"
-#include "core/nearest_labels.h"
-#include "core/refine.h"
-#include "core/triangulate.h"
+#include "deform/deform.h"
+#include "labels/nearest_labels.h"
+#include "refine/refine.h"
+#include "mesh/triangulate.h"
 #include "io/read_mesh.h"
 #include "test_meshes.h"
 

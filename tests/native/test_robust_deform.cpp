@@ -8,11 +8,11 @@
 #include <functional>
 #include <set>
 
-#include "core/deform.h"
-#include "core/fitted_rotations.h"
-#include "core/fold_free_step.h"
-#include "core/nearest_labels.h"
-#include "core/triangulate.h"
+#include "deform/deform.h"
+#include "deform/fitted_rotations.h"
+#include "deform/fold_free_step.h"
+#include "labels/nearest_labels.h"
+#include "mesh/triangulate.h"
 #include "io/deform_report.h"
 #include "io/labels_io.h"
 #include "io/read_mesh.h"

@@ -3,7 +3,7 @@
 #include <Eigen/Geometry>
 #include <random>
 
-#include "core/rodrigues.h"
+#include "deform/rodrigues.h"
 
 using polycube::rodrigues;
 

@@ -1,8 +1,8 @@
 #include <gtest/gtest.h>
 
-#include "core/laplacian.h"
-#include "core/sparse_cholesky.h"
-#include "core/triangulate.h"
+#include "linear_algebra/laplacian.h"
+#include "linear_algebra/sparse_cholesky.h"
+#include "mesh/triangulate.h"
 #include "test_meshes.h"
 
 namespace {

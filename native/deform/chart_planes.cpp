@@ -1,0 +1,131 @@
+#include "deform/chart_planes.h"
+
+#include <algorithm>
+
+#include "linear_algebra/sparse_cholesky.h"
+
+namespace polycube {
+
+ChartPlanes::ChartPlanes(int vertex_count, const Triangles& triangles, const std::vector<int>& triangle_labels)
+    : triangles_(triangles) {
+  sets_.fill(UnionFind(vertex_count));
+  for (Eigen::Index t = 0; t < triangles.rows(); ++t)
+    if (triangle_labels[t] >= 0) collapse(t, triangle_labels[t] / 2);
+}
+
+int ChartPlanes::root(int axis, int v) const { return sets_[axis].root(v); }
+
+void ChartPlanes::join(int axis, int a, int b) {
+  if (sets_[axis].join(a, b)) changed_[axis] = true;
+}
+
+void ChartPlanes::collapse(Eigen::Index t, int axis) {
+  join(axis, triangles_(t, 0), triangles_(t, 1));
+  join(axis, triangles_(t, 0), triangles_(t, 2));
+}
+
+void ChartPlanes::factorize(const Eigen::SparseMatrix<double>& laplacian) {
+  const int n = static_cast<int>(laplacian.rows());
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(laplacian.nonZeros());
+  std::vector<int> of_root(n);
+  for (int axis = 0; axis < 3; ++axis) {
+    if (!changed_[axis]) continue;
+    changed_[axis] = false;
+    ++factorizations_;
+    // One unknown per union-find set.
+    std::vector<int>& unknown = unknown_[axis];
+    unknown.resize(n);
+    int m = 0;
+    std::fill(of_root.begin(), of_root.end(), -1);
+    for (int v = 0; v < n; ++v) {
+      const int r = root(axis, v);
+      if (of_root[r] < 0) of_root[r] = m++;
+      unknown[v] = of_root[r];
+    }
+    // P^T L P: the entries of merged vertices add up.
+    entries.clear();
+    for (int column = 0; column < laplacian.outerSize(); ++column)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(laplacian, column); it; ++it)
+        entries.emplace_back(unknown[it.row()], unknown[column], it.value());
+    Eigen::SparseMatrix<double> reduced(m, m);
+    reduced.setFromTriplets(entries.begin(), entries.end());
+    cholesky_[axis] = std::make_unique<SparseCholesky>();
+    cholesky_[axis]->analyze(reduced);
+    cholesky_[axis]->factorize(reduced);
+  }
+}
+
+Vertices ChartPlanes::solve(const Eigen::MatrixX3d& rhs) const {
+  const Eigen::Index n = rhs.rows();
+  Vertices x(n, 3);
+  for (int axis = 0; axis < 3; ++axis) {
+    const std::vector<int>& unknown = unknown_[axis];
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(cholesky_[axis]->rows());
+    for (Eigen::Index v = 0; v < n; ++v) b[unknown[v]] += rhs(v, axis);
+    const Eigen::VectorXd y = cholesky_[axis]->solve(b);
+    for (Eigen::Index v = 0; v < n; ++v) x(v, axis) = y[unknown[v]];
+  }
+  return x;
+}
+
+bool ChartPlanes::solve_near(const Eigen::SparseMatrix<double>& laplacian, const Eigen::MatrixX3d& rhs,
+                             const std::vector<char>& region, Vertices& positions) const {
+  const int n = static_cast<int>(positions.rows());
+  const double scale = std::max(1.0, positions.cwiseAbs().maxCoeff());
+  Vertices result = positions;
+  std::vector<int> unknown(n);
+  std::vector<double> lo(n), hi(n);
+  std::vector<char> held(n);
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int axis = 0; axis < 3; ++axis) {
+    // A set with a vertex outside the region is held at that vertex's value;
+    // all of its outside vertices must agree on it.
+    std::fill(held.begin(), held.end(), 0);
+    for (int v = 0; v < n; ++v) {
+      if (region[v]) continue;
+      const int r = root(axis, v);
+      if (!held[r]) lo[r] = hi[r] = positions(v, axis);
+      held[r] = 1;
+      lo[r] = std::min(lo[r], positions(v, axis));
+      hi[r] = std::max(hi[r], positions(v, axis));
+    }
+    int m = 0;
+    std::fill(unknown.begin(), unknown.end(), -1);
+    std::vector<int> of_root(n, -1);
+    for (int v = 0; v < n; ++v) {
+      const int r = root(axis, v);
+      if (held[r]) {
+        if (hi[r] - lo[r] > 1e-12 * scale) return false;
+        result(v, axis) = lo[r];
+      } else {
+        if (of_root[r] < 0) of_root[r] = m++;
+        unknown[v] = of_root[r];
+      }
+    }
+    if (m == 0) continue;
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(m);
+    entries.clear();
+    for (int column = 0; column < laplacian.outerSize(); ++column)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(laplacian, column); it; ++it) {
+        const int row = unknown[it.row()];
+        if (row < 0) continue;
+        if (unknown[column] >= 0) entries.emplace_back(row, unknown[column], it.value());
+        else b[row] -= it.value() * result(column, axis);
+      }
+    for (int v = 0; v < n; ++v)
+      if (unknown[v] >= 0) b[unknown[v]] += rhs(v, axis);
+    Eigen::SparseMatrix<double> reduced(m, m);
+    reduced.setFromTriplets(entries.begin(), entries.end());
+    SparseCholesky local;
+    local.analyze(reduced);
+    local.factorize(reduced);
+    const Eigen::VectorXd y = local.solve(b);
+    for (int v = 0; v < n; ++v)
+      if (unknown[v] >= 0) result(v, axis) = y[unknown[v]];
+  }
+  positions = std::move(result);
+  return true;
+}
+
+}  // namespace polycube

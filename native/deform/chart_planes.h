@@ -1,0 +1,71 @@
+// The exact polycube nearest to a Poisson solve: L x = b solved with every
+// chart held flat on a plane perpendicular to its label's axis.
+//
+// Why: the paper's iteration only approaches its fixed points, and the robust
+// variant's step control (fold_free_step.h) slows it further where a few
+// faces are near collapse, so real models stall some degrees above the
+// tolerance (fandisk 7, eight 6). A chart labelled +-X is flat when its
+// vertices share one x; that is linear, so the polycube closest to the
+// solve, in L's energy, is one sparse solve per axis with each chart's
+// vertices merged into one unknown for that axis: A_k = P_k^T L P_k,
+// A_k y = P_k^T b_k, x_k = P_k y. Every face then has its axis' normal
+// exactly, points the other way (flipped) or has collapsed.
+//
+// Charts here are the vertex sets of the triangles whose labels share an
+// axis, joined where they share a vertex: two charts of one axis that touch
+// must share their plane, whatever their signs. Faces can also be collapsed
+// on purpose (collapse()): their corners then share a second coordinate too,
+// which puts them on a line.
+#pragma once
+
+#include <Eigen/SparseCore>
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "mesh/mesh.h"
+#include "linear_algebra/sparse_cholesky.h"
+#include "mesh/union_find.h"
+
+namespace polycube {
+
+class ChartPlanes {
+ public:
+  // Labels per triangle, 0..5.
+  ChartPlanes(int vertex_count, const Triangles& triangles, const std::vector<int>& triangle_labels);
+
+  // Makes the corners of triangle t share coordinate `axis` as well.
+  void collapse(Eigen::Index t, int axis);
+
+  // Reduces L (positive definite, e.g. with the diagonal shift of
+  // deform.cpp) to the flat-chart positions and factorises it, once per axis.
+  // Called again after collapse() with the same L, it redoes only the axes
+  // whose charts changed. Throws Error when a factorisation fails.
+  void factorize(const Eigen::SparseMatrix<double>& laplacian);
+  int factorizations() const { return factorizations_; }
+  // Minimises x^T L x / 2 - b^T x over the unknowns whose vertices all lie
+  // in `region`, every other vertex held at its value in `positions` (with
+  // the charts and collapses as they are now): after a few collapses the
+  // rest of a large mesh barely moves, and this costs a small factorisation
+  // instead of three of the whole mesh. Updates `positions`; returns false,
+  // leaving it, when a collapse joined vertices outside the region that
+  // stand at different values (then only a full solve can place them).
+  bool solve_near(const Eigen::SparseMatrix<double>& laplacian, const Eigen::MatrixX3d& rhs,
+                  const std::vector<char>& region, Vertices& positions) const;
+  // Minimises x^T L x / 2 - b^T x over the positions with flat charts; `rhs`
+  // is the n x 3 b. Uses the charts and collapses of the last factorize().
+  Vertices solve(const Eigen::MatrixX3d& rhs) const;
+
+ private:
+  int root(int axis, int v) const;
+  void join(int axis, int a, int b);
+
+  Triangles triangles_;
+  mutable std::array<UnionFind, 3> sets_;  // per axis: vertices sharing that coordinate
+  std::array<std::vector<int>, 3> unknown_;         // per axis and vertex: its unknown
+  std::array<std::unique_ptr<SparseCholesky>, 3> cholesky_;
+  std::array<bool, 3> changed_ = {true, true, true};
+  int factorizations_ = 0;
+};
+
+}  // namespace polycube

@@ -1,0 +1,377 @@
+#include "deform/deform.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "labels/axis.h"
+#include "mesh/check_input.h"
+#include "mesh/components.h"
+#include "linear_algebra/cotangent_weights.h"
+#include "deform/fitted_rotations.h"
+#include "deform/flatten_charts.h"
+#include "deform/fold_free_step.h"
+#include "deform/relabel_stalled_faces.h"
+#include "linear_algebra/laplacian.h"
+#include "mesh/mesh_adjacency.h"
+#include "labels/nearest_labels.h"
+#include "deform/poisson_rhs.h"
+#include "linear_algebra/sparse_cholesky.h"
+#include "deform/rotated_edges_rhs.h"
+#include "mesh/triangulate.h"
+
+namespace polycube {
+namespace {
+
+// L is singular: each component floats by a translation. A shift of eps on the
+// diagonal, with eps * x_i on the right, makes the system definite and is
+// exact at fixed points (L x_i = b there, so x_i still solves it); eps is far
+// below L's smallest non-zero eigenvalue on any mesh we can hold in memory.
+constexpr double kRelativeShift = 1e-8;
+
+// The robust variant (deform.h). Steps of a vertex are halved at most this
+// often before it is held (fold_free_step.h).
+constexpr int kMaxHalvings = 6;
+// The fitting phase ends when no vertex moves more than this fraction of the
+// bounding box diagonal, or after this many iterations: the fitted shape is
+// as-rigid-as-possible, not exact, so it is only a starting point.
+constexpr int kMaxFitIterations = 30;
+constexpr double kFitStepTolerance = 1e-3;
+// Attempts at flattening the charts (flatten_charts.h): when the fitting
+// phase ends, then when progress stalls, each after a label repair.
+constexpr int kMaxFlattenAttempts = 3;
+// Stalled: the largest deviation has not dropped by kProgress (relative) for
+// kStallIterations; then faces above kRepairDeviationDeg are candidates for
+// label repair (relabel_stalled_faces.h).
+constexpr int kStallIterations = 10;
+constexpr double kProgress = 0.01;
+constexpr double kRepairDeviationDeg = 45.0;
+
+
+int count(const std::vector<char>& flags) { return static_cast<int>(std::count(flags.begin(), flags.end(), 1)); }
+
+class Stopwatch {
+ public:
+  double lap() {
+    const auto now = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    return seconds;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+// The centroid of each component, so the solve can be put back in place.
+Eigen::MatrixX3d component_centroids(const Vertices& x, const Components& components) {
+  Eigen::MatrixX3d sum = Eigen::MatrixX3d::Zero(components.count, 3);
+  Eigen::VectorXd count = Eigen::VectorXd::Zero(components.count);
+  for (Eigen::Index v = 0; v < x.rows(); ++v) {
+    const int c = components.of_vertex[v];
+    if (c < 0) continue;
+    sum.row(c) += x.row(v);
+    count[c] += 1.0;
+  }
+  for (int c = 0; c < components.count; ++c) sum.row(c) /= count[c];
+  return sum;
+}
+
+
+// Below the tolerance, and not by collapsing: collapsed triangles are left out
+// of the normal figures, so a mesh squeezed flat or to a point would pass
+// (the paper's `current` variant does that to armadillo and bunny00).
+bool converged(const Figures& figures, double tolerance_deg, Eigen::Index triangles) {
+  return figures.normal_deviation_max_deg < tolerance_deg && 2 * static_cast<Eigen::Index>(figures.collapsed_faces) < triangles;
+}
+
+}  // namespace
+
+Variant parse_variant(const std::string& name) {
+  for (Variant variant : kVariants)
+    if (name == variant_name(variant)) return variant;
+  throw Error("unknown variant '" + name + "': use 'robust', 'fixed' or 'current'");
+}
+
+const char* variant_name(Variant variant) {
+  switch (variant) {
+    case Variant::kFixed: return "fixed";
+    case Variant::kCurrent: return "current";
+    case Variant::kRobust: break;
+  }
+  return "robust";
+}
+
+DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, const DeformOptions& options,
+                    const IterationCallback& callback) {
+  check_input(mesh, &labels);
+  if (options.iterations < 0) throw Error("the iteration limit must be 0 or more");
+  if (!(options.tolerance_deg >= 0.0)) throw Error("the tolerance must be 0 or more degrees");
+
+  Stopwatch total, phase;
+  DeformResult result;
+  result.labels = labels;
+  const std::vector<int> nearest = nearest_labels(mesh);
+  for (size_t f = 0; f < labels.size(); ++f)
+    if (labels[f] == kUnlabelled) {
+      result.labels[f] = nearest[f];
+      ++result.unlabelled_faces;
+    }
+
+  const Triangulation triangulation = triangulate(mesh.vertices, mesh.faces);
+  const Triangles& triangles = triangulation.triangles;
+  result.triangles = static_cast<int>(triangles.rows());
+  std::vector<int> triangle_labels(triangles.rows());
+  for (size_t t = 0; t < triangle_labels.size(); ++t)
+    triangle_labels[t] = result.labels[triangulation.face_of_triangle[t]];
+
+  const int n = static_cast<int>(mesh.vertices.rows());
+  const Components parts = components(n, triangles);
+  const Eigen::MatrixX3d centroids = component_centroids(mesh.vertices, parts);
+  QualityMeasure quality(mesh.vertices, triangles, triangle_labels);
+  Vertices x = mesh.vertices;
+  result.figures = quality.measure(x);
+  result.converged = converged(result.figures, options.tolerance_deg, triangles.rows());
+  result.seconds.measure += phase.lap();
+
+  Laplacian laplacian(n, triangles);
+  SparseCholesky factorization;
+  factorization.analyze(laplacian.matrix(), options.variant == Variant::kCurrent);
+  Eigen::MatrixX3d solution(n, 3);
+  // Puts a solution back where the mesh stands: every component's centroid
+  // where it was, isolated vertices where they were.
+  auto place = [&](const Eigen::MatrixX3d& solution) {
+    if (!solution.allFinite())
+      throw Error("the linear solve gave non-finite positions at iteration " + std::to_string(result.iterations + 1));
+    const Eigen::MatrixX3d drift = component_centroids(solution, parts) - centroids;
+    Vertices y(n, 3);
+    for (int v = 0; v < n; ++v) {
+      const int c = parts.of_vertex[v];
+      y.row(v) = c < 0 ? Eigen::RowVector3d(mesh.vertices.row(v)) : Eigen::RowVector3d(solution.row(v) - drift.row(c));
+    }
+    return y;
+  };
+  auto solve = [&](const SparseCholesky& factorization, const Eigen::MatrixX3d& rhs) {
+    solution = factorization.solve(rhs);
+    return place(solution);
+  };
+  // Measures, reports to the callback; false when the run must stop.
+  auto finish_iteration = [&](int iteration) {
+    result.figures = quality.measure(x, static_cast<bool>(callback));
+    result.iterations = iteration;
+    result.converged = converged(result.figures, options.tolerance_deg, triangles.rows());
+    result.seconds.measure += phase.lap();
+    if (callback && !callback(iteration, x, result.figures)) {
+      result.stopped = true;
+      return false;
+    }
+    phase.lap();  // time spent in the callback belongs to the caller
+    return true;
+  };
+
+  // A solve that breaks down after some iterations (the paper's `current`
+  // variant on armadillo: its triangles degenerate until the Laplacian is
+  // singular) ends the run with what was done, not with nothing.
+  try {
+    if (options.variant == Variant::kRobust) {
+      // Positive weights: with negative cotangents L is indefinite and the
+      // global step can fold triangles on its own (bone: 16% of the input's
+      // corners are obtuse, fandisk 7%). Clamping at zero keeps L positive
+      // semidefinite, and every fixed point is still an exact polycube.
+      const CotangentWeights weights = cotangent_weights(mesh.vertices, triangles).cwiseMax(0.0);
+      const double shift = laplacian.assemble(weights, kRelativeShift);
+      result.seconds.assemble += phase.lap();
+      if (!result.converged) factorization.factorize(laplacian.matrix());
+      result.seconds.factorize += phase.lap();
+      // The Laplacian of the current mesh, for the steps the input's cannot take.
+      Laplacian current_laplacian(n, triangles);
+      SparseCholesky current_factorization;
+      bool current_analyzed = false;
+
+      FaceStates state = quality.face_states(x);
+      const std::vector<std::vector<int>> adjacency = face_neighbours(mesh_adjacency(mesh.faces, n), mesh.faces.count());
+      std::vector<char> relabelled(mesh.faces.count(), 0);
+      const double diagonal = (mesh.vertices.colwise().maxCoeff() - mesh.vertices.colwise().minCoeff()).norm();
+
+      // Fold-free steps (fold_free_step.h), put back on the components'
+      // centroids, which per-vertex steps move a little.
+      auto controlled_step = [&](const Vertices& target) {
+        FoldFreeStep step = fold_free_step(x, state, target, triangles, quality, kMaxHalvings);
+        const Eigen::MatrixX3d drift = component_centroids(step.positions, parts) - centroids;
+        for (int v = 0; v < n; ++v)
+          if (parts.of_vertex[v] >= 0) step.positions.row(v) -= drift.row(parts.of_vertex[v]);
+        return step;
+      };
+
+      // Phase 3 (flatten_charts.h): the exact polycube, every chart flat,
+      // fold-free; then relaxed inside the flat charts.
+      std::unique_ptr<ChartPlanes> planes;
+      bool relaxed = false;
+      int flatten_attempts = 0;
+      auto try_flatten = [&](int iteration) {
+        if (planes || flatten_attempts >= kMaxFlattenAttempts) return;
+        ++flatten_attempts;
+        FlatCharts flat = flatten_charts(mesh.vertices, x, triangles, triangle_labels, weights, laplacian.matrix(),
+                                         shift, quality, place);
+        result.seconds.factorize += phase.lap();  // nearly all of it
+        result.factorizations += flat.planes->factorizations();
+        result.flatten_attempts.push_back(
+            {iteration, flat.rounds, flat.states.flipped_count, flat.collapsed_area, flat.found});
+        if (!flat.found) return;
+        x = std::move(flat.positions);
+        state = std::move(flat.states);
+        planes = std::move(flat.planes);
+        result.flat_iteration = iteration;
+        result.collapsed_on_purpose = flat.collapsed_on_purpose;
+      };
+
+      bool exact = false;
+      int fit_iterations = 0, since_progress = 0;
+      double best_max = state.max_deviation_deg;
+      for (int iteration = 1; iteration <= options.iterations && (!result.converged || (planes && !relaxed));
+           ++iteration) {
+        if (planes) {
+          // Relaxing the flat polycube. Two flat shapes with the same charts
+          // blend into a flat shape, so the step is shortened as a whole
+          // until it folds or collapses nothing; the relaxation stops when
+          // even a short step would, or once steps are small.
+          const Vertices target = relax_flat_charts(mesh.vertices, x, triangles, triangle_labels, weights,
+                                                    laplacian.matrix(), shift, *planes, place);
+          Vertices next;
+          FaceStates next_state;
+          bool found = false;
+          for (int halving = 0; halving <= kMaxHalvings && !found; ++halving) {
+            next = x + std::ldexp(1.0, -halving) * (target - x);
+            next_state = quality.face_states(next);
+            found = next_state.flipped_count == 0 && count(next_state.collapsed) <= count(state.collapsed);
+          }
+          result.seconds.solve += phase.lap();
+          if (!found) break;
+          const double step_size = (next - x).rowwise().norm().maxCoeff() / diagonal;
+          x = std::move(next);
+          state = std::move(next_state);
+          relaxed = step_size < kFitStepTolerance;
+          if (!finish_iteration(iteration)) break;
+          continue;
+        }
+        FoldFreeStep step;
+        if (!exact) {
+          // Phase 1: fit every triangle's input shape, turned onto its axis
+          // (fitted_rotations.h), with the input's Laplacian factorised once.
+          const Rotations rotations = fitted_rotations(mesh.vertices, x, triangles, weights, triangle_labels);
+          const Eigen::MatrixX3d rhs = rotated_edges_rhs(mesh.vertices, triangles, weights, rotations) + shift * x;
+          ++fit_iterations;
+          result.seconds.rotations += phase.lap();
+          step = controlled_step(solve(factorization, rhs));
+          result.seconds.solve += phase.lap();
+        } else {
+          // Phase 2: the paper's step, exact at its fixed points, with the
+          // input's Laplacian (fast: one back-substitution). Where that step
+          // would fold faces, take the paper's step with the Laplacian of the
+          // current mesh instead: with the input's, the paper's iteration
+          // reaches collapsed faces by turning them over first (B0: 4 faces
+          // folded at iteration 4 of `fixed`); the current metric's does not.
+          Eigen::MatrixX3d rhs = poisson_rhs(x, triangles, weights, triangle_labels) + shift * x;
+          result.seconds.rotations += phase.lap();
+          step = controlled_step(solve(factorization, rhs));
+          result.seconds.solve += phase.lap();
+          if (step.limited > 0) {
+            const CotangentWeights current = cotangent_weights(x, triangles).cwiseMax(0.0);
+            const double current_shift = current_laplacian.assemble(current, kRelativeShift);
+            if (!current_analyzed) current_factorization.analyze(current_laplacian.matrix(), true);
+            current_analyzed = true;
+            result.seconds.assemble += phase.lap();
+            current_factorization.factorize(current_laplacian.matrix());
+            result.seconds.factorize += phase.lap();
+            rhs = poisson_rhs(x, triangles, current, triangle_labels) + current_shift * x;
+            result.seconds.rotations += phase.lap();
+            step = controlled_step(solve(current_factorization, rhs));
+            result.seconds.solve += phase.lap();
+          }
+        }
+        const double step_size = (step.positions - x).rowwise().norm().maxCoeff() / diagonal;
+        x = std::move(step.positions);
+        state = std::move(step.states);
+
+        if (!exact && (step_size < kFitStepTolerance || fit_iterations >= kMaxFitIterations)) {
+          exact = true;
+          try_flatten(iteration);
+        }
+        // Stalled: the largest deviation has not improved for a while. Faces
+        // held back by the step control are the usual reason: repair their
+        // labels where a neighbour's label fits them (relabel_stalled_faces.h).
+        if (state.max_deviation_deg < best_max * (1.0 - kProgress)) {
+          best_max = state.max_deviation_deg;
+          since_progress = 0;
+        } else if (exact && ++since_progress >= kStallIterations) {
+          since_progress = 0;
+          const std::vector<int> changed = relabel_stalled_faces(x, triangulation, adjacency, state,
+                                                                 kRepairDeviationDeg, result.labels);
+          if (!changed.empty()) {
+            for (int f : changed) relabelled[f] = 1;
+            for (size_t t = 0; t < triangle_labels.size(); ++t)
+              triangle_labels[t] = result.labels[triangulation.face_of_triangle[t]];
+            quality.set_labels(triangle_labels);
+            state = quality.face_states(x);
+            best_max = state.max_deviation_deg;
+          }
+          try_flatten(iteration);
+        }
+        if (!finish_iteration(iteration)) break;
+      }
+      for (int f = 0; f < mesh.faces.count(); ++f)
+        if (relabelled[f]) result.relabelled_faces.push_back(f);
+      result.factorizations += current_factorization.factorizations();
+    } else {
+      CotangentWeights weights;
+      double shift = 0.0;
+      auto rebuild = [&](const Vertices& from) {
+        weights = cotangent_weights(from, triangles);
+        shift = laplacian.assemble(weights, kRelativeShift);
+        result.seconds.assemble += phase.lap();
+        factorization.factorize(laplacian.matrix());
+        result.seconds.factorize += phase.lap();
+      };
+      if (options.variant == Variant::kFixed && !result.converged) rebuild(mesh.vertices);
+      else result.seconds.assemble += phase.lap();
+
+      for (int iteration = 1; iteration <= options.iterations && !result.converged; ++iteration) {
+        if (options.variant == Variant::kCurrent) rebuild(x);
+        const Eigen::MatrixX3d rhs = poisson_rhs(x, triangles, weights, triangle_labels) + shift * x;
+        result.seconds.rotations += phase.lap();
+        x = solve(factorization, rhs);
+        result.seconds.solve += phase.lap();
+        if (!finish_iteration(iteration)) break;
+      }
+    }
+
+  } catch (const Error& e) {
+    if (result.iterations == 0) throw;
+    result.failure = e.what();
+  }
+
+  // The faces that did not make it, by polygon id.
+  {
+    const FaceStates state = quality.face_states(x);
+    std::vector<char> unconverged(mesh.faces.count(), 0), flipped(mesh.faces.count(), 0);
+    for (size_t t = 0; t < state.flipped.size(); ++t) {
+      const int f = triangulation.face_of_triangle[t];
+      if (!state.collapsed[t] && !(state.deviation_deg[t] < options.tolerance_deg)) unconverged[f] = 1;
+      if (state.flipped[t]) flipped[f] = 1;
+    }
+    for (int f = 0; f < mesh.faces.count(); ++f) {
+      if (unconverged[f]) result.unconverged_faces.push_back(f);
+      if (flipped[f]) result.flipped_faces.push_back(f);
+    }
+    result.seconds.measure += phase.lap();
+  }
+  result.figures = quality.measure(x);
+  result.factorizations += factorization.factorizations();
+  result.solver = factorization.backend();
+  result.positions = std::move(x);
+  result.seconds.total = total.lap();
+  return result;
+}
+
+}  // namespace polycube

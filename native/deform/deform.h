@@ -1,0 +1,125 @@
+// The polycube deformation of DESIGN.md section 2: iterate "rotate every
+// triangle's normal onto its label axis, then solve L x = b" until the largest
+// normal deviation is below the tolerance or the iteration limit is reached.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "mesh/mesh.h"
+#include "deform/quality.h"
+
+namespace polycube {
+
+// Which Laplacian the Poisson solve uses. Every fixed point is an exact polycube
+// whatever the weights, so both reach the same shapes; they differ in cost and
+// robustness.
+//
+// `robust` (the default) is ours, not the paper's (issue 6). Why the plain
+// method folds and stalls on real models, measured (200 iterations):
+// - its step jumps: `fixed` turns faces over on its way even where it ends
+//   exact (B0: 4 faces at iteration 4; fandisk: 43, 9 stay; elephant: 428);
+//   `current` diverges once triangles degenerate (sphere: from iteration 40,
+//   max 150 degrees; elephant: mean 47 degrees);
+// - negative cotangents make L indefinite (16% of bone's corners are obtuse,
+//   7% of fandisk's, 0% of the sphere's);
+// - labels that ask for the impossible: faces pointing more than 90 degrees
+//   away from their axis at the start (12 in bone's published labeling),
+//   staircase chart boundaries that need faces collapsed, one-face charts
+//   (136 in the elephant's nearest-axis labels), and quads bent across a
+//   polycube edge, whose two triangles cannot share one label.
+// What `robust` does, every part kept because the figures justified it:
+// 1. positive weights (cotangents clamped at 0) for a semidefinite L;
+// 2. a fitting phase: per-triangle rotations that turn the *input* normal onto
+//    the axis with the best in-plane twist (fitted_rotations.h), global step
+//    with the input Laplacian factorised once: an as-rigid-as-possible shape
+//    close to the polycube, which cuts edge and area error;
+// 3. then the exact polycube in one go (flatten_charts.h): every chart flat
+//    on its plane by a constrained solve, the few slivers that would turn
+//    over collapsed instead, then relaxed as rigidly as possible inside the
+//    flat charts. Every face then has its axis' normal exactly: fandisk,
+//    eight, bone, mesh_with_border, cactus, double-torus-example converge in
+//    6 to 60 iterations instead of stalling 3 to 47 degrees off after 200;
+//    the price is more collapsed slivers than `fixed` (fandisk 165 against
+//    61, 1% of the area);
+// 4. where the labels ask for more than slivers (flattening would collapse
+//    over an eighth of the surface: elephant, anchor, armadillo, bunny00 with
+//    nearest-axis labels), the continuous iteration goes on: the paper's step
+//    with the input Laplacian, or, where that would fold a face, with the
+//    current mesh's Laplacian, which collapses faces without turning them;
+// 5. every step fold-free (fold_free_step.h): faces never turn over;
+// 6. when progress stalls, faces held back near 90 degrees that fit a
+//    neighbour's label better are relabelled (relabel_stalled_faces.h, listed in
+//    DeformResult::relabelled_faces), and flattening is tried again.
+// What is left (see tests/native/test_robust_deform.cpp): labels that cannot
+// be met without crushing the model (elephant 90 degrees, anchor 90) need a
+// better labelling, not a better deformation; the faces above the tolerance
+// are listed in DeformResult::unconverged_faces.
+enum class Variant {
+  kFixed,    // built from the input once, factorised once: one back-substitution per iteration
+  kCurrent,  // rebuilt from the current mesh every iteration, as in the paper
+  kRobust,   // fold-free: input-shape fitting, then flat charts (or the paper's step under a step control)
+};
+
+constexpr Variant kVariants[] = {Variant::kRobust, Variant::kFixed, Variant::kCurrent};
+Variant parse_variant(const std::string& name);  // "robust" | "fixed" | "current", else Error
+const char* variant_name(Variant variant);
+
+struct DeformOptions {
+  int iterations = 100;
+  double tolerance_deg = 0.5;  // 0 runs every iteration: nothing is below it
+  Variant variant = Variant::kRobust;
+};
+
+struct PhaseSeconds {
+  double total = 0, assemble = 0, factorize = 0, rotations = 0, solve = 0, measure = 0;
+};
+
+struct DeformResult {
+  Vertices positions;
+  std::vector<int> labels;  // per polygon face, unlabelled ones replaced by their nearest axis
+  Figures figures;          // of `positions`
+  int iterations = 0;
+  bool converged = false;   // largest normal deviation below the tolerance, and not degenerate (see deform.cpp)
+  bool stopped = false;     // the callback asked to stop
+  std::string failure;      // why the solver broke off after some iterations; empty otherwise
+  int unlabelled_faces = 0;
+  int triangles = 0;
+  // Polygon faces (ids into the input's faces, ascending) that end above the
+  // tolerance, and those of them that are flipped (a visible fold). A polygon
+  // is listed when any of its triangles is; collapsed triangles are not.
+  std::vector<int> unconverged_faces;
+  std::vector<int> flipped_faces;
+  // Polygon faces whose label the `robust` variant changed because they could
+  // not reach its axis without folding (relabel_stalled_faces.h); `labels` holds the
+  // new ones and the figures are measured against them.
+  std::vector<int> relabelled_faces;
+  // The `robust` variant's iteration at which every chart became exactly
+  // flat (flatten_charts.h), 0 when it did not; the triangles it collapsed
+  // on purpose there to undo folds.
+  int flat_iteration = 0;
+  int collapsed_on_purpose = 0;
+  // Every attempt at flattening, kept or refused: why a run did not become
+  // exact (too much area collapsed, or folds left after every round).
+  struct FlattenAttempt {
+    int iteration = 0, rounds = 0, folds_left = 0;
+    double collapsed_area = 0.0;  // share of the input's area
+    bool kept = false;
+  };
+  std::vector<FlattenAttempt> flatten_attempts;
+  int factorizations = 0;   // numeric factorisations of a Laplacian
+  std::string solver;       // the factorisation used (sparse_cholesky.h)
+  PhaseSeconds seconds;
+};
+
+// Called after each iteration with its number (from 1), the positions and their
+// figures; returning false stops the run, keeping what is done.
+using IterationCallback = std::function<bool(int iteration, const Vertices& positions, const Figures& figures)>;
+
+// Labels are per polygon face, -1..5. Throws Error on input check_input rejects
+// and when a linear solve fails.
+DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, const DeformOptions& options = {},
+                    const IterationCallback& callback = {});
+
+}  // namespace polycube

@@ -1,0 +1,134 @@
+#include "deform/quality.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+
+#include "labels/axis.h"
+#include "linear_algebra/parallel.h"
+
+namespace polycube {
+namespace {
+
+constexpr double kDegreesPerRadian = 180.0 / M_PI;
+
+Eigen::Vector3d doubled_normal(const Vertices& v, const Triangles& t, Eigen::Index f) {
+  const Eigen::Vector3d a = v.row(t(f, 0)), b = v.row(t(f, 1)), c = v.row(t(f, 2));
+  return (b - a).cross(c - a);
+}
+
+}  // namespace
+
+QualityMeasure::QualityMeasure(const Vertices& input, const Triangles& triangles,
+                               std::vector<int> triangle_labels)
+    : triangles_(triangles), labels_(std::move(triangle_labels)), input_area_(triangles.rows()) {
+  for (Eigen::Index f = 0; f < triangles.rows(); ++f) {
+    input_area_[f] = 0.5 * doubled_normal(input, triangles, f).norm();
+    input_total_ += input_area_[f];
+  }
+  edges_.reserve(3 * static_cast<size_t>(triangles.rows()));
+  for (Eigen::Index f = 0; f < triangles.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = triangles(f, k), b = triangles(f, (k + 1) % 3);
+      if (a != b) edges_.emplace_back(std::min(a, b), std::max(a, b));
+    }
+  std::sort(edges_.begin(), edges_.end());
+  edges_.erase(std::unique(edges_.begin(), edges_.end()), edges_.end());
+  input_lengths_.resize(edges_.size());
+  for (size_t e = 0; e < edges_.size(); ++e)
+    input_lengths_[e] = (input.row(edges_[e].first) - input.row(edges_[e].second)).norm();
+}
+
+FaceStates QualityMeasure::face_states(const Vertices& output) const {
+  const Eigen::Index count = triangles_.rows();
+  const int threads = parallel_threads(count);
+  FaceStates s;
+  s.area.resize(count);
+  s.deviation_deg.assign(count, 0.0);
+  s.collapsed.assign(count, 0);
+  s.flipped.assign(count, 0);
+  double total = 0.0;
+#pragma omp parallel for num_threads(threads) reduction(+ : total)
+  for (Eigen::Index f = 0; f < count; ++f) {
+    s.area[f] = 0.5 * doubled_normal(output, triangles_, f).norm();
+    total += s.area[f];
+  }
+  s.scale2 = input_total_ > 0.0 && total > 0.0 ? total / input_total_ : 1.0;
+  int flipped = 0;
+  double max_deviation = 0.0;
+#pragma omp parallel for num_threads(threads) reduction(+ : flipped) reduction(max : max_deviation)
+  for (Eigen::Index f = 0; f < count; ++f) {
+    update_face_state(output, f, s);
+    flipped += s.flipped[f];
+    max_deviation = std::max(max_deviation, s.deviation_deg[f]);
+  }
+  s.flipped_count = flipped;
+  s.max_deviation_deg = max_deviation;
+  return s;
+}
+
+void QualityMeasure::update_face_state(const Vertices& output, Eigen::Index f, FaceStates& s) const {
+  const Eigen::Vector3d normal = doubled_normal(output, triangles_, f);
+  const double area = 0.5 * normal.norm();
+  s.area[f] = area;
+  s.collapsed[f] = area <= kCollapsedAreaRatio * s.scale2 * input_area_[f] || area == 0.0;
+  s.flipped[f] = 0;
+  s.deviation_deg[f] = 0.0;
+  if (s.collapsed[f]) return;
+  const Eigen::Vector3d unit = normal / (2.0 * area);
+  const Eigen::Vector3d axis = label_axis(labels_[f]);
+  // atan2 of |cross| and dot keeps small angles accurate (acos loses them).
+  s.deviation_deg[f] = std::atan2(unit.cross(axis).norm(), unit.dot(axis)) * kDegreesPerRadian;
+  s.flipped[f] = unit.dot(axis) < 0.0;
+}
+
+Figures QualityMeasure::measure(const Vertices& output, bool errors) const {
+  const FaceStates s = face_states(output);
+  Figures figures;
+  figures.normal_deviation_max_deg = s.max_deviation_deg;
+  figures.flipped_faces = s.flipped_count;
+  const Eigen::Index count = triangles_.rows();
+  double weighted_deviation = 0.0, counted_area = 0.0, area_error = 0.0;
+  int area_count = 0, collapsed = 0;
+#pragma omp parallel for num_threads(parallel_threads(count)) \
+    reduction(+ : weighted_deviation, counted_area, area_error, area_count, collapsed)
+  for (Eigen::Index f = 0; f < count; ++f) {
+    if (errors && input_area_[f] > 0.0) {
+      area_error += std::abs(s.area[f] / (s.scale2 * input_area_[f]) - 1.0);
+      ++area_count;
+    }
+    if (s.collapsed[f]) {
+      ++collapsed;
+      continue;
+    }
+    weighted_deviation += s.area[f] * s.deviation_deg[f];
+    counted_area += s.area[f];
+  }
+  figures.collapsed_faces = collapsed;
+  figures.normal_deviation_mean_deg = counted_area > 0.0 ? weighted_deviation / counted_area : 0.0;
+  figures.area_error = area_count > 0 ? area_error / area_count : 0.0;
+  if (!errors) return figures;
+
+  const double scale = std::sqrt(s.scale2);
+  double edge_error = 0.0;
+  long edge_count = 0;
+  const long edges = static_cast<long>(edges_.size());
+#pragma omp parallel for num_threads(parallel_threads(edges)) reduction(+ : edge_error, edge_count)
+  for (long e = 0; e < edges; ++e) {
+    if (input_lengths_[e] <= 0.0) continue;
+    const double length = (output.row(edges_[e].first) - output.row(edges_[e].second)).norm();
+    edge_error += std::abs(length / (scale * input_lengths_[e]) - 1.0);
+    ++edge_count;
+  }
+  figures.edge_error = edge_count > 0 ? edge_error / edge_count : 0.0;
+  return figures;
+}
+
+double QualityMeasure::collapsed_area_fraction(const FaceStates& states) const {
+  double collapsed = 0.0;
+  for (size_t f = 0; f < input_area_.size(); ++f)
+    if (states.collapsed[f]) collapsed += input_area_[f];
+  return input_total_ > 0.0 ? collapsed / input_total_ : 0.0;
+}
+
+}  // namespace polycube

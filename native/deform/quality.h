@@ -1,0 +1,77 @@
+// The quality figures of DESIGN.md section 4, the same definitions for the
+// stopping rule, the step control, the tests, the benchmark and the panel.
+//
+// With s = sqrt(area_out / area_in), so that uniform scale is not error:
+// - collapsed: output area below 1e-3 s^2 times the triangle's input area
+//   (input triangles of zero area count as collapsed once they are flat again);
+//   their normals are noise, so the two normal figures leave them out;
+// - normal deviation: angle between unit normal and label axis, max and mean
+//   weighted by output area, in degrees;
+// - flipped: non-collapsed triangles with normal . axis < 0;
+// - edge error: mean over unique edges of |len_out / (s len_in) - 1|;
+// - area error: mean over triangles of |area_out / (s^2 area_in) - 1|.
+// Edges and triangles with zero input size have no ratio and are left out of
+// the two error means.
+#pragma once
+
+#include <vector>
+
+#include "mesh/mesh.h"
+
+namespace polycube {
+
+constexpr double kCollapsedAreaRatio = 1e-3;
+
+struct Figures {
+  double normal_deviation_max_deg = 0.0;
+  double normal_deviation_mean_deg = 0.0;
+  double edge_error = 0.0;
+  double area_error = 0.0;
+  int flipped_faces = 0;
+  int collapsed_faces = 0;
+};
+
+// The same definitions per triangle: which faces a step folds (the robust
+// variant's step control) and which did not converge.
+struct FaceStates {
+  std::vector<double> area;           // output area
+  std::vector<double> deviation_deg;  // 0 for collapsed triangles (their normal is noise)
+  std::vector<char> collapsed;
+  std::vector<char> flipped;          // non-collapsed, normal . axis < 0
+  double scale2 = 1.0;                // s^2
+  int flipped_count = 0;
+  double max_deviation_deg = 0.0;
+};
+
+// Keeps what does not change between iterations (input areas, the edge list
+// and input lengths) so each measurement costs one pass over the mesh.
+class QualityMeasure {
+ public:
+  QualityMeasure(const Vertices& input, const Triangles& triangles, std::vector<int> triangle_labels);
+
+  FaceStates face_states(const Vertices& output) const;
+  // Re-evaluates triangle f of `states` for new positions, keeping its scale:
+  // for local changes, where a full pass per change would cost O(mesh).
+  // flipped_count and max_deviation_deg are not updated.
+  void update_face_state(const Vertices& output, Eigen::Index f, FaceStates& states) const;
+  // Without `errors`, the edge and area error means are left at 0: the
+  // stopping rule needs only the normal figures, and the edge pass is the
+  // costliest part.
+  Figures measure(const Vertices& output, bool errors = true) const;
+
+  // The share of the input's area in the collapsed triangles of `states`.
+  double collapsed_area_fraction(const FaceStates& states) const;
+
+  // Labels changed by a repair: the input's measurements stay.
+  void set_labels(std::vector<int> triangle_labels) { labels_ = std::move(triangle_labels); }
+
+ private:
+  Triangles triangles_;
+  std::vector<int> labels_;
+  std::vector<double> input_area_;
+  double input_total_ = 0.0;
+  std::vector<std::pair<int, int>> edges_;
+  std::vector<double> input_lengths_;
+};
+
+}  // namespace polycube

@@ -1,0 +1,397 @@
+#include "labels/repair_charts.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <tuple>
+
+#include "labels/charts.h"
+#include "labels/validate_labels.h"
+
+namespace polycube {
+
+int violation_score(const MeshAdjacency& adjacency, const std::vector<int>& labels) {
+  // The same conditions as validate_labels, without listing faces: this runs
+  // once per candidate move.
+  const Charts ch = charts(adjacency, labels);
+  std::vector<std::uint64_t> pairs;
+  for (int e = 0; e < adjacency.edge_count(); ++e)
+    for (int i = adjacency.edge_offsets[e]; i < adjacency.edge_offsets[e + 1]; ++i)
+      for (int j = i + 1; j < adjacency.edge_offsets[e + 1]; ++j) {
+        const std::uint64_t a = ch.of_face[adjacency.edge_faces[i]], b = ch.of_face[adjacency.edge_faces[j]];
+        if (a != b) pairs.push_back(std::min(a, b) << 32 | std::max(a, b));
+      }
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  std::vector<int> neighbours(ch.count(), 0);
+  int score = 0;
+  for (std::uint64_t p : pairs) {
+    const int a = static_cast<int>(p >> 32), b = static_cast<int>(p & 0xffffffffu);
+    ++neighbours[a];
+    ++neighbours[b];
+    if ((ch.label[a] ^ 1) == ch.label[b]) score += 2;
+  }
+  // A chart that reaches the mesh border has an open side where its missing
+  // neighbours would be: on open meshes the four-neighbour rule cannot hold,
+  // and forcing it merges whole sheets into one label.
+  std::vector<char> open_side(ch.count(), 0);
+  for (int e = 0; e < adjacency.edge_count(); ++e)
+    if (adjacency.faces_of_edge(e) == 1) open_side[ch.of_face[adjacency.edge_faces[adjacency.edge_offsets[e]]]] = 1;
+  for (int c = 0; c < ch.count(); ++c)
+    if (!open_side[c]) score += std::max(0, 4 - neighbours[c]);
+  std::vector<int> around;
+  const int vertex_count = static_cast<int>(adjacency.vertex_offsets.size()) - 1;
+  for (int v = 0; v < vertex_count; ++v) {
+    around.clear();
+    for (int k = adjacency.vertex_offsets[v]; k < adjacency.vertex_offsets[v + 1]; ++k) {
+      const int c = ch.of_face[adjacency.vertex_faces[k]];
+      if (std::find(around.begin(), around.end(), c) == around.end()) around.push_back(c);
+    }
+    score += std::max(0, static_cast<int>(around.size()) - 3);
+  }
+  return score;
+}
+
+namespace {
+
+// The faces take `label`, or, where label is kEachFaceBest, each its own best
+// label off the axis `axis` (a band that must turn a corner: a ring around a cap).
+constexpr int kEachFaceBest = 6;
+
+// Tiny charts: fewer faces than this, or less than this share of the area.
+constexpr int kTinyFaces = 3;
+constexpr double kTinyShare = 1e-3;
+
+struct Move {
+  Move(std::vector<int> faces_, int label_, int axis_ = -1) : faces(std::move(faces_)), label(label_), axis(axis_) {}
+  std::vector<int> faces;
+  int label;
+  int axis;
+  std::vector<int> result;  // when not empty: the whole labeling after the move
+};
+
+// The faces in `region` cut again by alpha-expansion among the labels off
+// `axis`, everything else held: a strip that separates two opposite charts
+// gets smooth chart boundaries of its own instead of one label per face. The
+// cut runs on the region alone; pairs with held faces become data costs.
+std::vector<int> recut(const LabelEnergy& energy, const std::vector<int>& labels, const std::vector<int>& region,
+                       int axis) {
+  constexpr double kForbidden = 1e6;  // the axis of the two opposite charts
+  std::vector<int> local(labels.size(), -1);
+  for (size_t k = 0; k < region.size(); ++k) local[region[k]] = static_cast<int>(k);
+  LabelEnergy sub;
+  sub.data.resize(static_cast<Eigen::Index>(region.size()), 6);
+  for (size_t k = 0; k < region.size(); ++k)
+    for (int l = 0; l < 6; ++l) sub.data(k, l) = l / 2 == axis ? kForbidden : energy.data(region[k], l);
+  sub.label_cost = energy.label_cost;
+  for (size_t p = 0; p < energy.pairs.size(); ++p) {
+    const int f = energy.pairs[p][0], g = energy.pairs[p][1];
+    const double w = energy.weights[p];
+    if (local[f] >= 0 && local[g] >= 0) {
+      sub.pairs.push_back({local[f], local[g]});
+      sub.weights.push_back(w);
+    } else if (local[f] >= 0 || local[g] >= 0) {
+      const int inside = local[f] >= 0 ? f : g, held = inside == f ? g : f;
+      for (int l = 0; l < 6; ++l) sub.data(local[inside], l) += w * energy.label_cost(l, labels[held]);
+    }
+  }
+  std::vector<int> start(region.size());
+  for (size_t k = 0; k < region.size(); ++k) {
+    int best = -1;
+    for (int l = 0; l < 6; ++l)
+      if (l / 2 != axis && (best < 0 || sub.data(k, l) < sub.data(k, best))) best = l;
+    start[k] = best;
+  }
+  const std::vector<int> cut = alpha_expansion(sub, std::move(start));
+  std::vector<int> result = labels;
+  for (size_t k = 0; k < region.size(); ++k) result[region[k]] = cut[k];
+  return result;
+}
+
+// The faces of `chart` within `depth` edge-steps of `seed` faces (seed faces
+// of other charts are skipped).
+std::vector<int> band(const MeshAdjacency& adjacency, const std::vector<std::vector<int>>& face_edges,
+                      const Charts& ch, int chart, const std::vector<int>& seed, int depth) {
+  std::vector<int> result;
+  std::vector<char> taken(ch.of_face.size(), 0);
+  for (int f : seed)
+    if (ch.of_face[f] == chart && !taken[f]) {
+      taken[f] = 1;
+      result.push_back(f);
+    }
+  std::vector<int> frontier = result;
+  for (int step = 1; step < depth; ++step) {
+    std::vector<int> next;
+    for (int f : frontier)
+      for (int e : face_edges[f])
+        for (int k = adjacency.edge_offsets[e]; k < adjacency.edge_offsets[e + 1]; ++k) {
+          const int g = adjacency.edge_faces[k];
+          if (ch.of_face[g] == chart && !taken[g]) {
+            taken[g] = 1;
+            result.push_back(g);
+            next.push_back(g);
+          }
+        }
+    frontier = std::move(next);
+  }
+  std::sort(result.begin(), result.end());
+  return result;
+}
+
+std::vector<int> joined(std::vector<int> a, const std::vector<int>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+// A feature too small for its own charts (the tip of a tail, a bump): the
+// chart and all its neighbours but the largest become the largest.
+Move absorb(int chart, const std::vector<std::vector<int>>& neighbours, const Charts& ch,
+            const std::vector<std::vector<int>>& chart_faces) {
+  Move move{chart_faces[chart], -1};
+  int largest = -1;
+  for (int n : neighbours[chart])
+    if (largest < 0 || ch.faces[n] > ch.faces[largest]) largest = n;
+  if (largest < 0) return move;
+  move.label = ch.label[largest];
+  for (int n : neighbours[chart])
+    if (n != largest) move.faces = joined(std::move(move.faces), chart_faces[n]);
+  return move;
+}
+
+std::vector<Move> candidate_moves(const MeshAdjacency& adjacency, const LabelEnergy& energy,
+                                  const std::vector<int>& labels, const std::vector<std::vector<int>>& face_edges,
+                                  const Charts& ch, const std::vector<std::vector<int>>& chart_faces,
+                                  const std::vector<std::vector<int>>& neighbours, const LabelViolation& v) {
+  std::vector<Move> moves;
+  switch (v.kind) {
+    case ViolationKind::kTooFewNeighbours:
+      for (int l = 0; l < 6; ++l)
+        if (l != v.label) moves.push_back({v.faces, l});
+      // Two charts that only make sense together (a cap and its rim) move as one.
+      for (int n : v.others)
+        for (int l = 0; l < 6; ++l)
+          if (l != v.label && l != ch.label[n]) moves.push_back({joined(v.faces, chart_faces[n]), l});
+      moves.push_back(absorb(v.chart, neighbours, ch, chart_faces));
+      break;
+    case ViolationKind::kOppositeNeighbours: {
+      const int other = v.others[0];
+      for (int l = 0; l < 6; ++l) {
+        if (l / 2 == v.label / 2) continue;  // the orthogonal labels only
+        moves.push_back({chart_faces[v.chart], l});
+        for (int chart : {v.chart, other})
+          for (int depth : {1, 2}) moves.push_back({band(adjacency, face_edges, ch, chart, v.faces, depth), l});
+      }
+      for (int chart : {v.chart, other})
+        for (int depth : {1, 2, 3})
+          moves.push_back({band(adjacency, face_edges, ch, chart, v.faces, depth), kEachFaceBest, v.label / 2});
+      for (int chart : {v.chart, other})
+        for (int depth : {2, 4}) {
+          Move move{band(adjacency, face_edges, ch, chart, v.faces, depth), kEachFaceBest, v.label / 2};
+          move.result = recut(energy, labels, move.faces, v.label / 2);
+          moves.push_back(std::move(move));
+        }
+      moves.push_back(absorb(v.chart, neighbours, ch, chart_faces));
+      break;
+    }
+    case ViolationKind::kCornerTooManyCharts: {
+      std::vector<int> at_corner = v.others;
+      at_corner.push_back(v.chart);
+      for (int chart : at_corner) {
+        std::vector<int> faces;
+        for (int f : v.faces)
+          if (ch.of_face[f] == chart) faces.push_back(f);
+        for (int target : at_corner)
+          if (ch.label[target] != ch.label[chart]) moves.push_back({faces, ch.label[target]});
+      }
+      break;
+    }
+  }
+  return moves;
+}
+
+}  // namespace
+
+std::vector<int> merge_tiny_charts(const MeshAdjacency& adjacency, const LabelEnergy& energy,
+                                   const std::vector<double>& areas, std::vector<int> labels, int max_moves) {
+  const int face_count = static_cast<int>(labels.size());
+  double total_area = 0.0;
+  for (double a : areas) total_area += a;
+  int score = violation_score(adjacency, labels);
+  for (int move = 0; move < max_moves; ++move) {
+    const Charts ch = charts(adjacency, labels);
+    std::vector<double> chart_area(ch.count(), 0.0);
+    std::vector<std::vector<int>> chart_faces(ch.count()), neighbours(ch.count());
+    for (int f = 0; f < face_count; ++f) {
+      chart_area[ch.of_face[f]] += areas[f];
+      chart_faces[ch.of_face[f]].push_back(f);
+    }
+    for (const ChartBoundary& b : chart_boundaries(adjacency, ch)) {
+      neighbours[b.charts[0]].push_back(b.charts[1]);
+      neighbours[b.charts[1]].push_back(b.charts[0]);
+    }
+    std::vector<int> tiny;
+    for (int c = 0; c < ch.count(); ++c)
+      if (!neighbours[c].empty() && (ch.faces[c] < kTinyFaces || chart_area[c] < kTinyShare * total_area))
+        tiny.push_back(c);
+    std::stable_sort(tiny.begin(), tiny.end(), [&](int a, int b) { return chart_area[a] < chart_area[b]; });
+    bool merged = false;
+    for (int c : tiny) {
+      double best_energy = 0.0;
+      int best_score = 0;
+      std::vector<int> best;
+      for (int n : neighbours[c]) {
+        std::vector<int> candidate = labels;
+        for (int f : chart_faces[c]) candidate[f] = ch.label[n];
+        const int s = violation_score(adjacency, candidate);
+        if (s > score) continue;  // never at the price of validity
+        const double e = energy(candidate);
+        if (best.empty() || e < best_energy) {
+          best_energy = e;
+          best_score = s;
+          best = std::move(candidate);
+        }
+      }
+      if (!best.empty()) {
+        labels = std::move(best);
+        score = best_score;
+        merged = true;
+        break;
+      }
+    }
+    if (!merged) break;
+  }
+  return labels;
+}
+
+namespace {
+
+// A move that did not fix anything by itself, kept in case a few more moves
+// finish the job (the rim of a thin ear: the strip that separates its two
+// sides leaves small charts and crowded corners behind, which the next moves
+// clean up).
+struct Stuck {
+  int score;
+  double energy;
+  std::vector<int> labels;
+};
+
+struct Greedy {
+  const MeshAdjacency& adjacency;
+  const LabelEnergy& energy;
+  std::vector<std::vector<int>> face_edges;
+  long budget;  // candidate evaluations left
+
+  // Greedy moves until valid, stuck or out of moves; the best `keep` of the
+  // non-improving candidates of the last round go to `stuck`.
+  std::vector<int> run(std::vector<int> labels, int& score, int max_moves, size_t keep, std::vector<Stuck>* stuck);
+};
+
+std::vector<int> Greedy::run(std::vector<int> labels, int& score, int max_moves, size_t keep,
+                             std::vector<Stuck>* stuck) {
+  const int vertex_count = static_cast<int>(adjacency.vertex_offsets.size()) - 1;
+  const int face_count = static_cast<int>(labels.size());
+  for (int round = 0; round < max_moves && score > 0 && budget > 0; ++round) {
+    const Charts ch = charts(adjacency, labels);
+    const LabelValidation validation = validate_labels(adjacency, ch, vertex_count);
+    std::vector<std::vector<int>> chart_faces(ch.count()), neighbours(ch.count());
+    for (int f = 0; f < face_count; ++f) chart_faces[ch.of_face[f]].push_back(f);
+    for (const ChartBoundary& b : chart_boundaries(adjacency, ch)) {
+      neighbours[b.charts[0]].push_back(b.charts[1]);
+      neighbours[b.charts[1]].push_back(b.charts[0]);
+    }
+    // Small things first: fixing a small chart often fixes the big one it sits
+    // on, and costs less than the other way round.
+    std::vector<const LabelViolation*> order;
+    for (const LabelViolation& v : validation.violations) order.push_back(&v);
+    std::stable_sort(order.begin(), order.end(), [&ch](const LabelViolation* a, const LabelViolation* b) {
+      return ch.faces[a->chart] < ch.faces[b->chart];
+    });
+    bool moved = false;
+    const double current_energy = energy(labels);
+    if (stuck) stuck->clear();
+    for (const LabelViolation* violation : order) {
+      const LabelViolation& v = *violation;
+      // The cheapest fix per unit of score: a small move that fixes one thing
+      // beats relabelling half a leg to fix two.
+      int best_score = score;
+      double best_cost = 0.0;
+      std::vector<int> best;
+      for (const Move& move : candidate_moves(adjacency, energy, labels, face_edges, ch, chart_faces, neighbours, v)) {
+        if (move.faces.empty() || move.label < 0 || budget-- <= 0) continue;
+        std::vector<int> candidate = move.result.empty() ? labels : move.result;
+        for (int f : move.result.empty() ? move.faces : std::vector<int>{}) {
+          if (move.label != kEachFaceBest) {
+            candidate[f] = move.label;
+            continue;
+          }
+          int best_label = -1;
+          for (int l = 0; l < 6; ++l)
+            if (l / 2 != move.axis && (best_label < 0 || energy.data(f, l) < energy.data(f, best_label))) best_label = l;
+          candidate[f] = best_label;
+        }
+        const int s = violation_score(adjacency, candidate);
+        if (s >= score) {
+          if (stuck && keep > 0) {
+            const double e = energy(candidate);
+            auto worse = [](const Stuck& a, const Stuck& b) { return std::tie(a.score, a.energy) < std::tie(b.score, b.energy); };
+            stuck->push_back({s, e, std::move(candidate)});
+            std::stable_sort(stuck->begin(), stuck->end(), worse);
+            if (stuck->size() > keep) stuck->pop_back();
+          }
+          continue;
+        }
+        const double e = energy(candidate), cost = (e - current_energy) / (score - s);
+        if (best.empty() || cost < best_cost) {
+          best_score = s;
+          best_cost = cost;
+          best = std::move(candidate);
+        }
+      }
+      if (!best.empty()) {
+        labels = std::move(best);
+        score = best_score;
+        moved = true;
+        break;
+      }
+    }
+    if (!moved) break;
+  }
+  return labels;
+}
+
+}  // namespace
+
+std::vector<int> repair_charts(const MeshAdjacency& adjacency, const LabelEnergy& energy, std::vector<int> labels,
+                               int max_moves) {
+  const int face_count = static_cast<int>(labels.size());
+  Greedy greedy{adjacency, energy, std::vector<std::vector<int>>(face_count),
+                std::max(2000L, 100000000L / std::max(1, face_count))};
+  for (int e = 0; e < adjacency.edge_count(); ++e)
+    for (int k = adjacency.edge_offsets[e]; k < adjacency.edge_offsets[e + 1]; ++k)
+      greedy.face_edges[adjacency.edge_faces[k]].push_back(e);
+
+  int score = violation_score(adjacency, labels);
+  // When no single move helps, try the few least bad ones followed by a short
+  // greedy run each, and keep the first that ends below the score it started from.
+  constexpr size_t kLookahead = 4;
+  constexpr int kLookaheadMoves = 12;
+  for (int attempt = 0; attempt < max_moves && score > 0; ++attempt) {
+    std::vector<Stuck> stuck;
+    labels = greedy.run(std::move(labels), score, max_moves, kLookahead, &stuck);
+    bool escaped = false;
+    for (Stuck& option : stuck) {
+      if (score == 0 || greedy.budget <= 0) break;
+      int option_score = option.score;
+      std::vector<int> result = greedy.run(std::move(option.labels), option_score, kLookaheadMoves, 0, nullptr);
+      if (option_score < score) {
+        labels = std::move(result);
+        score = option_score;
+        escaped = true;
+        break;
+      }
+    }
+    if (!escaped) break;
+  }
+  return labels;
+}
+
+}  // namespace polycube

@@ -1,0 +1,52 @@
+// Local repair of a labeling that breaks the polycube conditions
+// (validate_labels). Violations are taken smallest chart first; for the first
+// one some candidate move improves, the move with the least energy added per
+// unit of score removed is applied, and the labeling is validated again.
+// Candidate moves:
+// - a chart with too few neighbours: the whole chart, or it and one
+//   neighbour, takes another label (merging into a neighbour, or becoming a
+//   chart its neighbours can frame), or it and all its neighbours but the
+//   largest join the largest (a feature too small for its own charts);
+// - opposite charts side by side: the smaller chart takes an orthogonal label;
+//   or a band of faces along their boundary (on either side) does, as one
+//   label, each face's own best orthogonal label, or a graph cut among the
+//   orthogonal labels, so a strip separates them; or the smaller chart and
+//   its neighbours but the largest join the largest;
+// - a corner of four or more charts: the faces of one chart around the
+//   vertex take the label of another chart there.
+// When no single move helps, the few least bad ones are each followed by a
+// short greedy run, and the first that ends lower is kept (a strip along the
+// rim of a thin ear leaves small charts that the next moves clean up).
+// The score counts each missing neighbour, each opposite pair (twice) and each
+// chart beyond three at a corner; only moves that lower it are kept, so the
+// repair ends. Charts that reach the mesh border are not held to four
+// neighbours (the validator still lists them): on an open mesh that rule would
+// merge whole sheets into one label. Deterministic.
+#pragma once
+
+#include <vector>
+
+#include "labels/alpha_expansion.h"
+#include "mesh/mesh_adjacency.h"
+
+namespace polycube {
+
+// energy: the labeller's, to choose between moves that fix equally much.
+// max_moves: at most this many moves. The candidates tried are also bounded
+// (about 1e8 face visits in all), so a mesh full of violations no move can fix
+// costs seconds, not hours; the bound is a count, so the result stays
+// deterministic.
+std::vector<int> repair_charts(const MeshAdjacency& adjacency, const LabelEnergy& energy, std::vector<int> labels,
+                               int max_moves);
+
+// Tiny charts (fewer than three faces, or under 0.1% of the area: noise, and
+// more than the deformation can flatten) take the label of the neighbour that
+// costs least energy, smallest first, where that does not raise the violation
+// score. areas: per face.
+std::vector<int> merge_tiny_charts(const MeshAdjacency& adjacency, const LabelEnergy& energy,
+                                   const std::vector<double>& areas, std::vector<int> labels, int max_moves);
+
+// The score above (0 for a valid labeling); labels 0..5, one per face.
+int violation_score(const MeshAdjacency& adjacency, const std::vector<int>& labels);
+
+}  // namespace polycube
