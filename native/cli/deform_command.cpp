@@ -1,5 +1,5 @@
 // `polycube deform IN [--labels nearest|auto|FILE] [--flip-labels] [--iterations N] [--tolerance DEG]
-//  [--variant robust|fixed|current] [--output OUT] [--report REPORT.json]`
+//  [--variant robust|fixed|current] [--output OUT] [--output-labels LABELS.txt] [--report REPORT.json]`
 #include <unistd.h>
 
 #include <cstdio>
@@ -20,7 +20,8 @@ namespace polycube {
 
 const char* const kDeformUsage =
     "polycube deform IN.(off|obj|ply) [--labels nearest|auto|FILE] [--flip-labels] [--iterations N] [--tolerance DEG]\n"
-    "                [--variant robust|fixed|current] [--output OUT.(obj|off|ply)] [--report REPORT.json]\n"
+    "                [--variant robust|fixed|current] [--output OUT.(obj|off|ply)] [--output-labels LABELS.txt]\n"
+    "                [--report REPORT.json]\n"
     "  Deforms the mesh into its polycube and prints the quality figures.\n"
     "  --labels      nearest (default): every face takes the axis nearest its normal;\n"
     "                auto: the automatic labeller (see `polycube label`; --compactness W, default 0.3);\n"
@@ -36,10 +37,11 @@ const char* const kDeformUsage =
     "                fixed: the paper's method, Laplacian of the input, factorised once;\n"
     "                current: the paper's method, Laplacian rebuilt every iteration, as in the paper\n"
     "  --output      the deformed mesh (same vertices and faces as the input)\n"
+    "  --output-labels  the labels the run ended with (the given ones, and any the solver changed)\n"
     "  --report      the figures and timings as JSON\n";
 
 int deform_command(const std::vector<std::string>& args) {
-  const Arguments arguments(args, {"labels", "iterations", "tolerance", "variant", "output", "report", "compactness"},
+  const Arguments arguments(args, {"labels", "iterations", "tolerance", "variant", "output", "output-labels", "report", "compactness"},
                             {"flip-labels"});
   DeformOptions options;
   options.iterations = arguments.get_int("iterations", options.iterations, 0);
@@ -69,6 +71,7 @@ int deform_command(const std::vector<std::string>& args) {
   json.add("peak_mib", peak_resident_mib());
   const std::string report = json.str();
   if (arguments.has("output")) write_mesh(arguments.get("output", ""), result.positions, mesh.faces);
+  if (arguments.has("output-labels")) write_labels(arguments.get("output-labels", ""), result.labels);
   if (arguments.has("report")) write_file_atomically(arguments.get("report", ""), report + "\n");
   std::printf("%s\n", report.c_str());
   return 0;
