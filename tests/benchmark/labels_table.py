@@ -71,7 +71,7 @@ def read_mesh(path):
         return np.array(v), f
     tokens = [l.split("#")[0].split() for l in text]
     tokens = [t for t in tokens if t]
-    if tokens[0][0] in ("OFF", "off"):
+    if tokens[0][0].upper().endswith("OFF"):
         head = tokens[0][1:] if len(tokens[0]) > 1 else tokens[1]
         start = 1 if len(tokens[0]) > 1 else 2
         nv, nf = int(head[0]), int(head[1])
@@ -253,6 +253,13 @@ def run_model(name, path, program, out, extra):
     return row
 
 
+def run_guarded(name, *args):
+    try:
+        return run_model(name, *args)
+    except Exception as e:  # a row saying why, not a lost table
+        return {"model": name, "error": f"{type(e).__name__}: {e}"}
+
+
 COLUMNS = [("model", "{model}"), ("faces", "{faces}"), ("charts", "{charts}"), ("exact", "{exact}"),
            ("good", "{good}"), ("max°", "{max_deg:.2f}"), ("max° given", "{max_deg_given:.2f}"),
            ("flipped", "{flipped}"), ("folded in→out", "{folded_in}→{folded_out}"),
@@ -278,7 +285,7 @@ def main():
     print("|" + "---|" * len(COLUMNS), flush=True)
     rows = []
     with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
-        futures = [pool.submit(run_model, n, MODELS[n], args.program, pathlib.Path(args.out), args.label_args)
+        futures = [pool.submit(run_guarded, n, MODELS[n], args.program, pathlib.Path(args.out), args.label_args)
                    for n in names]
         for future in futures:
             row = future.result()
