@@ -108,7 +108,7 @@ of every violation in Edit Mode"""
             return {'CANCELLED'}
         for problem in result["orientation"]:
             self.report({'WARNING'}, f"'{obj.name}': {problem}.")
-        if result["valid"]:
+        if result["realisable"]:
             if was_editing:
                 bpy.ops.object.mode_set(mode='EDIT')
             self.report({'WARNING'} if result["orientation"] else {'INFO'}, summary(obj.name, result))

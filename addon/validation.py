@@ -20,6 +20,9 @@ KIND_NAMES = {
     "too_few_neighbours": "Fewer than 4 neighbours",
     "opposite_neighbours": "Opposite neighbours",
     "corner_too_many_charts": "Corners of 4+ charts",
+    "reversed_chart": "Charts facing away",
+    "turning_point": "Boundaries turning back",
+    "squeezed_faces": "Squeezed faces",
 }
 _KIND_WORDS = {
     "too_few_neighbours": ("chart touches fewer than four others",
@@ -28,6 +31,11 @@ _KIND_WORDS = {
                             "charts border a chart of the opposite label"),
     "corner_too_many_charts": ("corner joins more than three charts",
                                "corners join more than three charts"),
+    "reversed_chart": ("chart faces away from its axis", "charts face away from their axes"),
+    "turning_point": ("chart boundary turns back along its polycube edge",
+                      "chart boundaries turn back along their polycube edges"),
+    "squeezed_faces": ("chart has faces flat charts squeeze onto a line",
+                       "charts have faces flat charts squeeze onto a line"),
 }
 
 
@@ -43,7 +51,8 @@ def validate(obj, mesh, values):
     problems = _orientation_problems(orientation(mesh.vertices, mesh.face_indices, mesh.face_sizes, values))
     result["orientation"] = [sentence for _, sentence in problems]
     obj[VALIDATION_PROPERTY] = dict(
-        digest=labels_digest(values), valid=int(result["valid"]), charts=result["charts"],
+        digest=labels_digest(values), valid=int(result["valid"]), realisable=int(result["realisable"]),
+        charts=result["charts"],
         boundaries=result["boundaries"], corners=result["corners"],
         unlabelled_faces=result["unlabelled_faces"], violations=len(result["violations"]),
         kinds=_kind_counts(result), orientation=[short for short, _ in problems])
@@ -91,12 +100,15 @@ def offending_faces(result):
 def summary(name, result, faces_selected=None):
     """One sentence on the labels of object `name`."""
     figures = f"{result['charts']} charts, {result['corners']} corners"
-    if result["valid"]:
+    if result["realisable"]:
         winding = " but the winding is not outward everywhere (see the info log)" if result.get("orientation") else ""
         return f"'{name}': the labels are a valid polycube ({figures}){winding}."
     parts = [f"{count} {_KIND_WORDS.get(kind, (kind, kind))[count > 1]}"
              for kind, count in _kind_counts(result).items()]
     selected = f", {faces_selected} faces selected" if faces_selected is not None else ""
+    if result["valid"]:
+        return (f"'{name}': the labels are a valid polycube, but flat charts would collapse faces: "
+                f"{', '.join(parts)} ({figures}{selected}).")
     return f"'{name}': the labels are not a valid polycube: {', '.join(parts)} ({figures}{selected})."
 
 
@@ -113,6 +125,15 @@ def details(result):
             lines.append(f"{chart} borders chart {others} of the opposite label")
         elif v["kind"] == "corner_too_many_charts":
             lines.append(f"vertex {v['vertex']}: {chart} meets charts {others} at one corner")
+        elif v["kind"] == "reversed_chart":
+            lines.append(f"{chart} faces away from its axis: no polycube turns it without turning "
+                         f"the surface inside out")
+        elif v["kind"] == "turning_point":
+            lines.append(f"{chart} meets chart {others} along a boundary that turns back along their "
+                         f"polycube edge: the faces where it turns back would collapse")
+        elif v["kind"] == "squeezed_faces":
+            lines.append(f"{chart}: its selected faces lie between planes of one other chart and "
+                         f"would collapse onto a line")
         else:
             lines.append(f"{chart}: {v['kind']}")
     return lines

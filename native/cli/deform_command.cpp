@@ -8,7 +8,7 @@
 #include "cli/commands.h"
 #include "cli/peak_memory.h"
 #include "cli/label_source.h"
-#include "labels/auto_labels.h"
+#include "labeller/auto_labels.h"
 #include "deform/deform.h"
 #include "labels/nearest_labels.h"
 #include "io/deform_report.h"
@@ -21,10 +21,10 @@ namespace polycube {
 const char* const kDeformUsage =
     "polycube deform IN.(off|obj|ply) [--labels nearest|auto|FILE] [--flip-labels] [--iterations N] [--tolerance DEG]\n"
     "                [--variant robust|fixed|current] [--output OUT.(obj|off|ply)] [--output-labels LABELS.txt]\n"
-    "                [--report REPORT.json]\n"
+    "                [--start SHAPE] [--report REPORT.json]\n"
     "  Deforms the mesh into its polycube and prints the quality figures.\n"
     "  --labels      nearest (default): every face takes the axis nearest its normal;\n"
-    "                auto: the automatic labeller (see `polycube label`; --compactness W, default 0.3);\n"
+    "                auto: the automatic labeller (see `polycube label`; --detail D, --compactness W);\n"
     "                FILE: one label per face, 0..5 = +X,-X,+Y,-Y,+Z,-Z, -1 = nearest\n"
     "  --flip-labels every label turned to its opposite: labels made for the other winding\n"
     "  --iterations  iteration limit (default 100)\n"
@@ -36,12 +36,13 @@ const char* const kDeformUsage =
     "                still above the tolerance: unconverged_faces\n"
     "                fixed: the paper's method, Laplacian of the input, factorised once;\n"
     "                current: the paper's method, Laplacian rebuilt every iteration, as in the paper\n"
+    "  --start       a mesh with the same vertices and faces to start from (`polycube label --straightened`)\n"
     "  --output      the deformed mesh (same vertices and faces as the input)\n"
     "  --output-labels  the labels the run ended with (the given ones, and any the solver changed)\n"
     "  --report      the figures and timings as JSON\n";
 
 int deform_command(const std::vector<std::string>& args) {
-  const Arguments arguments(args, {"labels", "iterations", "tolerance", "variant", "output", "output-labels", "report", "compactness"},
+  const Arguments arguments(args, {"labels", "iterations", "tolerance", "variant", "output", "output-labels", "report", "compactness", "detail", "start"},
                             {"flip-labels"});
   DeformOptions options;
   options.iterations = arguments.get_int("iterations", options.iterations, 0);
@@ -49,10 +50,16 @@ int deform_command(const std::vector<std::string>& args) {
   options.variant = parse_variant(arguments.get("variant", variant_name(options.variant)));
 
   const PolygonMesh mesh = read_mesh(arguments.input());
+  if (arguments.has("start")) {
+    const PolygonMesh start = read_mesh(arguments.get("start", ""));
+    if (start.vertices.rows() != mesh.vertices.rows() || start.faces.indices != mesh.faces.indices)
+      throw Error("--start must have the same vertices and faces as the input");
+    options.start = start.vertices;
+  }
   const std::string labels_source = arguments.get("labels", "nearest");
   const bool flip = arguments.has("flip-labels");
   const std::vector<int> labels = labels_from_source(
-      labels_source, mesh, arguments.get_double("compactness", AutoLabelOptions().compactness, 0.0), flip);
+      labels_source, mesh, auto_label_options(arguments), flip);
   warn_about_orientation(mesh, labels, flip);
 
   // Progress only on a terminal: in logs and pipes it would be noise.

@@ -1,37 +1,48 @@
-// `polycube label IN --output LABELS.txt [--compactness W]`
+// `polycube label IN --output LABELS.txt [--detail D] [--compactness W] [--straightened SHAPE]`
+#include <algorithm>
 #include <cstdio>
 
 #include "cli/arguments.h"
 #include "cli/commands.h"
 #include "cli/label_source.h"
-#include "labels/auto_labels.h"
+#include "labeller/auto_labels.h"
 #include "labels/validate_labels.h"
 #include "io/labels_io.h"
 #include "io/read_mesh.h"
+#include "io/write_mesh.h"
 
 namespace polycube {
 
 const char* const kLabelUsage =
-    "polycube label IN.(off|obj|ply) --output LABELS.txt [--compactness W]\n"
-    "  Labels every face automatically (graph cut over the six axes, then local repair of\n"
-    "  what breaks the polycube conditions), writes one label per face and prints a summary.\n"
+    "polycube label IN.(off|obj|ply) --output LABELS.txt [--detail D] [--compactness W]\n"
+    "               [--straightened SHAPE.(obj|off|ply)]\n"
+    "  Labels every face automatically: straightens the shape so its normals gather on the axes,\n"
+    "  reads labels off it (graph cut over the six axes), repairs what breaks the polycube\n"
+    "  conditions and relabels faces flat charts would squeeze; writes one label per face and\n"
+    "  prints a summary.\n"
+    "  --detail       0..1 (default 0.5): 0 gives a few large charts, 1 many small ones\n"
     "  --output       the labels file (0..5 = +X,-X,+Y,-Y,+Z,-Z), readable by --labels FILE\n"
-    "  --compactness  weight of chart boundaries against fidelity to the normals (default 0.3):\n"
-    "                 larger gives fewer, rounder charts\n";
+    "  --compactness  weight of chart boundaries against fidelity to the normals (default: set by\n"
+    "                 --detail, 0.3 at 0.5): larger gives fewer, rounder charts\n"
+    "  --straightened the straightened shape the labels were read from (same vertices and faces);\n"
+    "                 `polycube deform --start` can start from it\n";
 
 int label_command(const std::vector<std::string>& args) {
-  const Arguments arguments(args, {"output", "compactness"});
+  const Arguments arguments(args, {"output", "compactness", "detail", "straightened"});
   if (!arguments.has("output")) throw Error("--output LABELS.txt is required");
-  AutoLabelOptions options;
-  options.compactness = arguments.get_double("compactness", options.compactness, 0.0);
+  const AutoLabelOptions options = auto_label_options(arguments);
   const PolygonMesh mesh = read_mesh(arguments.input());
-  const std::vector<int> labels = auto_labels(mesh, options);
+  Vertices straightened;
+  const std::vector<int> labels = auto_labels(mesh, options, &straightened);
   warn_about_orientation(mesh, labels, false);  // labels follow the winding: an inward mesh gets inward labels
   write_labels(arguments.get("output", ""), labels);
+  if (arguments.has("straightened")) write_mesh(arguments.get("straightened", ""), straightened, mesh.faces);
   const LabelValidation v = validate_labels(mesh, labels);
-  std::printf("%d faces, %d charts, %d chart boundaries, %d corners, %zu violations%s\n", mesh.faces.count(),
-              v.charts, v.boundaries, v.corners, v.violations.size(),
-              v.valid() ? "" : " (run `polycube validate IN --labels LABELS.txt` to list them)");
+  const size_t invalid = static_cast<size_t>(std::count_if(
+      v.violations.begin(), v.violations.end(), [](const LabelViolation& x) { return makes_invalid(x.kind); }));
+  std::printf("%d faces, %d charts, %d chart boundaries, %d corners, %zu violations, %zu realisability problems%s\n",
+              mesh.faces.count(), v.charts, v.boundaries, v.corners, invalid, v.violations.size() - invalid,
+              v.realisable() ? "" : " (run `polycube validate IN --labels LABELS.txt` to list them)");
   return 0;
 }
 

@@ -2,21 +2,26 @@
 
 #include <cstdio>
 
-#include "labels/auto_labels.h"
+#include "cli/arguments.h"
+#include "labeller/auto_labels.h"
 #include "labels/nearest_labels.h"
 #include "labels/orientation.h"
 #include "io/labels_io.h"
 
 namespace polycube {
 
-std::vector<int> labels_from_source(const std::string& source, const PolygonMesh& mesh, double compactness,
-                                    bool flip) {
+AutoLabelOptions auto_label_options(const Arguments& arguments) {
+  AutoLabelOptions options = AutoLabelOptions::with_detail(arguments.get_double("detail", 0.5, 0.0));
+  options.compactness = arguments.get_double("compactness", options.compactness, 0.0);
+  return options;
+}
+
+std::vector<int> labels_from_source(const std::string& source, const PolygonMesh& mesh,
+                                    const AutoLabelOptions& options, bool flip) {
   std::vector<int> labels;
   if (source == "nearest") {
     labels = nearest_labels(mesh);
   } else if (source == "auto") {
-    AutoLabelOptions options;
-    options.compactness = compactness;
     labels = auto_labels(mesh, options);
   } else {
     labels = read_labels(source, mesh.faces.count());

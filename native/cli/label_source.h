@@ -11,8 +11,15 @@
 
 namespace polycube {
 
-std::vector<int> labels_from_source(const std::string& source, const PolygonMesh& mesh, double compactness,
-                                    bool flip);
+struct AutoLabelOptions;
+class Arguments;
+
+// The labeller's options from --detail D (0..1) and --compactness W (which
+// overrides the compactness --detail sets).
+AutoLabelOptions auto_label_options(const Arguments& arguments);
+
+std::vector<int> labels_from_source(const std::string& source, const PolygonMesh& mesh,
+                                    const AutoLabelOptions& options, bool flip);
 
 // Prints one line per orientation problem to stderr; returns whether any.
 bool warn_about_orientation(const PolygonMesh& mesh, const std::vector<int>& labels, bool flipped);

@@ -1,11 +1,11 @@
-// `polycube validate IN --labels FILE|auto|nearest [--compactness W] [--flip-labels] [--json]`
+// `polycube validate IN --labels FILE|auto|nearest [--detail D] [--compactness W] [--flip-labels] [--json]`
 #include <algorithm>
 #include <cstdio>
 
 #include "cli/arguments.h"
 #include "cli/commands.h"
 #include "cli/label_source.h"
-#include "labels/auto_labels.h"
+#include "labeller/auto_labels.h"
 #include "labels/axis.h"
 #include "labels/orientation.h"
 #include "labels/validate_labels.h"
@@ -15,13 +15,16 @@
 namespace polycube {
 
 const char* const kValidateUsage =
-    "polycube validate IN.(off|obj|ply) --labels FILE|auto|nearest [--compactness W] [--flip-labels] [--json]\n"
+    "polycube validate IN.(off|obj|ply) --labels FILE|auto|nearest [--detail D] [--compactness W]\n"
+    "                [--flip-labels] [--json]\n"
     "  Checks the labels against the polycube conditions (every chart touches at least four\n"
     "  others, no opposite labels side by side, three charts at every corner), lists every\n"
-    "  violation with its faces and checks the orientation. Exit status 0 when valid, 4 when not.\n"
+    "  violation with its faces and checks the orientation; also whether flat charts can realise\n"
+    "  the labels: reversed charts (invalid), turning points and squeezed faces (they collapse).\n"
+    "  Exit status 0 when valid, 4 when not.\n"
     "  --labels       FILE: one label per face (0..5 = +X,-X,+Y,-Y,+Z,-Z, -1 = nearest);\n"
     "                 auto: the automatic labeller; nearest: the axis nearest each normal\n"
-    "  --compactness  weight of chart boundaries for --labels auto (default 0.3)\n"
+    "  --detail, --compactness  for --labels auto, as in `polycube label`\n"
     "  --flip-labels  turn every label to its opposite (labels made for the other winding)\n"
     "  --json         print the result as JSON (violations with all their faces)\n";
 
@@ -37,13 +40,12 @@ void print_faces(const std::vector<int>& faces) {
 }  // namespace
 
 int validate_command(const std::vector<std::string>& args) {
-  const Arguments arguments(args, {"labels", "compactness"}, {"flip-labels", "json"});
+  const Arguments arguments(args, {"labels", "compactness", "detail"}, {"flip-labels", "json"});
   if (!arguments.has("labels")) throw Error("--labels FILE|auto|nearest is required");
-  const double compactness = arguments.get_double("compactness", AutoLabelOptions().compactness, 0.0);
   const bool flip = arguments.has("flip-labels");
 
   const PolygonMesh mesh = read_mesh(arguments.input());
-  const std::vector<int> labels = labels_from_source(arguments.get("labels", ""), mesh, compactness, flip);
+  const std::vector<int> labels = labels_from_source(arguments.get("labels", ""), mesh, auto_label_options(arguments), flip);
   const LabelValidation validation = validate_labels(mesh, labels);
   const Orientation orient = orientation(mesh, &labels);
 
@@ -70,12 +72,18 @@ int validate_command(const std::vector<std::string>& args) {
         case ViolationKind::kCornerTooManyCharts:
           std::printf(") and %zu more charts meet at vertex %d;", v.others.size(), v.vertex);
           break;
+        case ViolationKind::kReversedChart: std::printf(") points away from its axis;"); break;
+        case ViolationKind::kTurningPoint:
+          std::printf(") meets chart %d along a boundary that doubles back;", v.others[0]);
+          break;
+        case ViolationKind::kSqueezedFaces: std::printf(") has %zu faces flat charts squeeze onto a line;", v.faces.size()); break;
       }
       std::printf(" faces");
       print_faces(v.faces);
     }
-    std::printf("%s: %zu violation%s\n", validation.valid() ? "valid" : "invalid", validation.violations.size(),
-                validation.violations.size() == 1 ? "" : "s");
+    std::printf("%s: %zu violation%s\n",
+                validation.realisable() ? "valid" : validation.valid() ? "valid, not realisable without collapse" : "invalid",
+                validation.violations.size(), validation.violations.size() == 1 ? "" : "s");
   }
   return validation.valid() ? 0 : 4;
 }

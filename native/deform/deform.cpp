@@ -41,6 +41,8 @@ constexpr double kFitStepTolerance = 1e-3;
 // Attempts at flattening the charts (flatten_charts.h): when the fitting
 // phase ends, then when progress stalls, each after a label repair.
 constexpr int kMaxFlattenAttempts = 3;
+// Also retried this many iterations after the last attempt, stalled or not.
+constexpr int kRetryIterations = 10;
 // Stalled: the largest deviation has not dropped by kProgress (relative) for
 // kStallIterations; then faces above kRepairDeviationDeg are candidates for
 // label repair (relabel_stalled_faces.h).
@@ -63,21 +65,6 @@ class Stopwatch {
  private:
   std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };
-
-// The centroid of each component, so the solve can be put back in place.
-Eigen::MatrixX3d component_centroids(const Vertices& x, const Components& components) {
-  Eigen::MatrixX3d sum = Eigen::MatrixX3d::Zero(components.count, 3);
-  Eigen::VectorXd count = Eigen::VectorXd::Zero(components.count);
-  for (Eigen::Index v = 0; v < x.rows(); ++v) {
-    const int c = components.of_vertex[v];
-    if (c < 0) continue;
-    sum.row(c) += x.row(v);
-    count[c] += 1.0;
-  }
-  for (int c = 0; c < components.count; ++c) sum.row(c) /= count[c];
-  return sum;
-}
-
 
 // Below the tolerance, and not by collapsing: collapsed triangles are left out
 // of the normal figures, so a mesh squeezed flat or to a point would pass
@@ -108,6 +95,8 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
   check_input(mesh, &labels);
   if (options.iterations < 0) throw Error("the iteration limit must be 0 or more");
   if (!(options.tolerance_deg >= 0.0)) throw Error("the tolerance must be 0 or more degrees");
+  if (options.start.size() > 0 && (options.start.rows() != mesh.vertices.rows() || !options.start.allFinite()))
+    throw Error("the start positions must be finite, one row per vertex of the mesh");
 
   Stopwatch total, phase;
   DeformResult result;
@@ -133,7 +122,32 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
   Vertices x = mesh.vertices;
   result.figures = quality.measure(x);
   result.converged = converged(result.figures, options.tolerance_deg, triangles.rows());
+  result.input_folded_edges = quality.input_folded_edges();
   result.seconds.measure += phase.lap();
+
+  // Never worse than the input (docs/design.md section 2.6): a robust run
+  // whose last state folds more edges than the input, or flips more faces
+  // than its labels did at the start, returns the latest state that does
+  // neither; the input itself qualifies, so there is always one.
+  const bool keep_acceptable = options.variant == Variant::kRobust;
+  const int start_flipped = result.figures.flipped_faces;
+  Vertices acceptable_x = x;
+  std::vector<int> acceptable_labels = result.labels;
+  const std::vector<int> filled_labels = result.labels;  // the caller's, unlabelled faces filled
+  auto acceptable = [&](const Figures& f) {
+    return f.flipped_faces <= start_flipped && f.folded_edges <= result.input_folded_edges;
+  };
+  auto consider_acceptable = [&](int iteration) {
+    if (!keep_acceptable || !acceptable(result.figures)) return;
+    acceptable_x = x;
+    acceptable_labels = result.labels;
+    result.kept_iteration = iteration;
+  };
+  if (options.start.size() > 0) {
+    x = options.start;
+    result.figures = quality.measure(x);
+    result.converged = converged(result.figures, options.tolerance_deg, triangles.rows());
+  }
 
   Laplacian laplacian(n, triangles);
   SparseCholesky factorization;
@@ -144,13 +158,7 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
   auto place = [&](const Eigen::MatrixX3d& solution) {
     if (!solution.allFinite())
       throw Error("the linear solve gave non-finite positions at iteration " + std::to_string(result.iterations + 1));
-    const Eigen::MatrixX3d drift = component_centroids(solution, parts) - centroids;
-    Vertices y(n, 3);
-    for (int v = 0; v < n; ++v) {
-      const int c = parts.of_vertex[v];
-      y.row(v) = c < 0 ? Eigen::RowVector3d(mesh.vertices.row(v)) : Eigen::RowVector3d(solution.row(v) - drift.row(c));
-    }
-    return y;
+    return place_components(solution, mesh.vertices, parts, centroids);
   };
   auto solve = [&](const SparseCholesky& factorization, const Eigen::MatrixX3d& rhs) {
     solution = factorization.solve(rhs);
@@ -161,6 +169,7 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
     result.figures = quality.measure(x, static_cast<bool>(callback));
     result.iterations = iteration;
     result.converged = converged(result.figures, options.tolerance_deg, triangles.rows());
+    consider_acceptable(iteration);
     result.seconds.measure += phase.lap();
     if (callback && !callback(iteration, x, result.figures)) {
       result.stopped = true;
@@ -191,7 +200,6 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
 
       FaceStates state = quality.face_states(x);
       const std::vector<std::vector<int>> adjacency = face_neighbours(mesh_adjacency(mesh.faces, n), mesh.faces.count());
-      std::vector<char> relabelled(mesh.faces.count(), 0);
       const double diagonal = (mesh.vertices.colwise().maxCoeff() - mesh.vertices.colwise().minCoeff()).norm();
 
       // Fold-free steps (fold_free_step.h), put back on the components'
@@ -208,10 +216,11 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
       // fold-free; then relaxed inside the flat charts.
       std::unique_ptr<ChartPlanes> planes;
       bool relaxed = false;
-      int flatten_attempts = 0;
+      int flatten_attempts = 0, last_attempt = 0;
       auto try_flatten = [&](int iteration) {
         if (planes || flatten_attempts >= kMaxFlattenAttempts) return;
         ++flatten_attempts;
+        last_attempt = iteration;
         FlatCharts flat = flatten_charts(mesh.vertices, x, triangles, triangle_labels, weights, laplacian.matrix(),
                                          shift, quality, place);
         result.seconds.factorize += phase.lap();  // nearly all of it
@@ -309,7 +318,6 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
           const std::vector<int> changed = relabel_stalled_faces(x, triangulation, adjacency, state,
                                                                  kRepairDeviationDeg, result.labels);
           if (!changed.empty()) {
-            for (int f : changed) relabelled[f] = 1;
             for (size_t t = 0; t < triangle_labels.size(); ++t)
               triangle_labels[t] = result.labels[triangulation.face_of_triangle[t]];
             quality.set_labels(triangle_labels);
@@ -317,11 +325,14 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
             best_max = state.max_deviation_deg;
           }
           try_flatten(iteration);
+        } else if (exact && iteration - last_attempt >= kRetryIterations) {
+          // The continuous iteration can keep improving slowly for a long
+          // time while a few folds blocked the last attempt (fandisk: 4 folds
+          // at iteration 9, then no stall until iteration 100).
+          try_flatten(iteration);
         }
         if (!finish_iteration(iteration)) break;
       }
-      for (int f = 0; f < mesh.faces.count(); ++f)
-        if (relabelled[f]) result.relabelled_faces.push_back(f);
       result.factorizations += current_factorization.factorizations();
     } else {
       CotangentWeights weights;
@@ -350,6 +361,18 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
     if (result.iterations == 0) throw;
     result.failure = e.what();
   }
+  if (keep_acceptable && result.kept_iteration != result.iterations) {
+    x = std::move(acceptable_x);
+    result.labels = std::move(acceptable_labels);
+    for (size_t t = 0; t < triangle_labels.size(); ++t)
+      triangle_labels[t] = result.labels[triangulation.face_of_triangle[t]];
+    quality.set_labels(triangle_labels);
+  } else {
+    result.kept_iteration = result.iterations;
+  }
+  result.relabelled_faces.clear();
+  for (int f = 0; f < mesh.faces.count(); ++f)
+    if (result.labels[f] != filled_labels[f]) result.relabelled_faces.push_back(f);
 
   // The faces that did not make it, by polygon id.
   {
@@ -367,6 +390,18 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
     result.seconds.measure += phase.lap();
   }
   result.figures = quality.measure(x);
+  result.converged = converged(result.figures, options.tolerance_deg, triangles.rows());
+  if (!result.relabelled_faces.empty()) {
+    // Against the labels the caller gave (unlabelled faces: nearest axis).
+    std::vector<int> given(triangles.rows());
+    for (size_t t = 0; t < given.size(); ++t) {
+      const int label = labels[triangulation.face_of_triangle[t]];
+      given[t] = label == kUnlabelled ? nearest[triangulation.face_of_triangle[t]] : label;
+    }
+    result.given_labels_figures = QualityMeasure(mesh.vertices, triangles, std::move(given)).measure(x);
+  } else {
+    result.given_labels_figures = result.figures;
+  }
   result.factorizations += factorization.factorizations();
   result.solver = factorization.backend();
   result.positions = std::move(x);

@@ -70,6 +70,10 @@ struct DeformOptions {
   int iterations = 100;
   double tolerance_deg = 0.5;  // 0 runs every iteration: nothing is below it
   Variant variant = Variant::kRobust;
+  // Where the iteration starts (same vertices as the input), for example the
+  // labeller's straightened shape; empty: the input. Energies and figures are
+  // always measured against the input.
+  Vertices start;
 };
 
 struct PhaseSeconds {
@@ -79,8 +83,17 @@ struct PhaseSeconds {
 struct DeformResult {
   Vertices positions;
   std::vector<int> labels;  // per polygon face, unlabelled ones replaced by their nearest axis
-  Figures figures;          // of `positions`
+  Figures figures;          // of `positions`, against `labels`
+  // Against the labels the caller gave (unlabelled faces: their nearest
+  // axis); the same as `figures` unless the solver relabelled faces.
+  Figures given_labels_figures;
+  int input_folded_edges = 0;  // see quality.h; no robust result has more
   int iterations = 0;
+  // The iteration whose positions are returned: `iterations`, except when
+  // the last state of a robust run folds more edges than the input or flips
+  // more faces than the labels did at the start; then the latest state that
+  // does neither (0: the input).
+  int kept_iteration = 0;
   bool converged = false;   // largest normal deviation below the tolerance, and not degenerate (see deform.cpp)
   bool stopped = false;     // the callback asked to stop
   std::string failure;      // why the solver broke off after some iterations; empty otherwise

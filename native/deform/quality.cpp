@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 #include "labels/axis.h"
 #include "linear_algebra/parallel.h"
@@ -37,6 +38,42 @@ QualityMeasure::QualityMeasure(const Vertices& input, const Triangles& triangles
   input_lengths_.resize(edges_.size());
   for (size_t e = 0; e < edges_.size(); ++e)
     input_lengths_[e] = (input.row(edges_[e].first) - input.row(edges_[e].second)).norm();
+
+  // Edges with exactly two triangles: sort (edge, triangle) and take the runs of two.
+  std::vector<std::tuple<int, int, int>> sides;
+  sides.reserve(3 * static_cast<size_t>(triangles.rows()));
+  for (Eigen::Index f = 0; f < triangles.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = triangles(f, k), b = triangles(f, (k + 1) % 3);
+      if (a != b) sides.emplace_back(std::min(a, b), std::max(a, b), static_cast<int>(f));
+    }
+  std::sort(sides.begin(), sides.end());
+  for (size_t i = 0; i < sides.size();) {
+    size_t j = i;
+    while (j < sides.size() && std::get<0>(sides[j]) == std::get<0>(sides[i]) &&
+           std::get<1>(sides[j]) == std::get<1>(sides[i]))
+      ++j;
+    if (j - i == 2 && std::get<2>(sides[i]) != std::get<2>(sides[i + 1]))
+      interior_pairs_.emplace_back(std::get<2>(sides[i]), std::get<2>(sides[i + 1]));
+    i = j;
+  }
+  std::vector<char> degenerate(triangles.rows());
+  for (Eigen::Index f = 0; f < triangles.rows(); ++f) degenerate[f] = input_area_[f] == 0.0;
+  input_folded_edges_ = folded_edges(input, degenerate);
+}
+
+int QualityMeasure::folded_edges(const Vertices& output, const std::vector<char>& collapsed) const {
+  int folded = 0;
+  const long pairs = static_cast<long>(interior_pairs_.size());
+#pragma omp parallel for num_threads(parallel_threads(pairs)) reduction(+ : folded)
+  for (long e = 0; e < pairs; ++e) {
+    const auto [a, b] = interior_pairs_[e];
+    if (collapsed[a] || collapsed[b]) continue;
+    const Eigen::Vector3d na = doubled_normal(output, triangles_, a), nb = doubled_normal(output, triangles_, b);
+    // dot of the unit normals < -0.5, without dividing by zero lengths
+    folded += na.dot(nb) < -0.5 * na.norm() * nb.norm();
+  }
+  return folded;
 }
 
 FaceStates QualityMeasure::face_states(const Vertices& output) const {
@@ -88,10 +125,11 @@ Figures QualityMeasure::measure(const Vertices& output, bool errors) const {
   figures.normal_deviation_max_deg = s.max_deviation_deg;
   figures.flipped_faces = s.flipped_count;
   const Eigen::Index count = triangles_.rows();
-  double weighted_deviation = 0.0, counted_area = 0.0, area_error = 0.0;
+  double weighted_deviation = 0.0, counted_area = 0.0, area_error = 0.0, collapsed_area = 0.0, nearest_max = 0.0;
   int area_count = 0, collapsed = 0;
 #pragma omp parallel for num_threads(parallel_threads(count)) \
-    reduction(+ : weighted_deviation, counted_area, area_error, area_count, collapsed)
+    reduction(+ : weighted_deviation, counted_area, area_error, area_count, collapsed, collapsed_area) \
+    reduction(max : nearest_max)
   for (Eigen::Index f = 0; f < count; ++f) {
     if (errors && input_area_[f] > 0.0) {
       area_error += std::abs(s.area[f] / (s.scale2 * input_area_[f]) - 1.0);
@@ -99,12 +137,19 @@ Figures QualityMeasure::measure(const Vertices& output, bool errors) const {
     }
     if (s.collapsed[f]) {
       ++collapsed;
+      collapsed_area += input_area_[f];
       continue;
     }
     weighted_deviation += s.area[f] * s.deviation_deg[f];
     counted_area += s.area[f];
+    const Eigen::Vector3d unit = doubled_normal(output, triangles_, f) / (2.0 * s.area[f]);
+    const double largest = unit.cwiseAbs().maxCoeff();
+    nearest_max = std::max(nearest_max, std::acos(std::min(1.0, largest)) * kDegreesPerRadian);
   }
   figures.collapsed_faces = collapsed;
+  figures.collapsed_area = input_total_ > 0.0 ? collapsed_area / input_total_ : 0.0;
+  figures.nearest_axis_deviation_max_deg = nearest_max;
+  figures.folded_edges = folded_edges(output, s.collapsed);
   figures.normal_deviation_mean_deg = counted_area > 0.0 ? weighted_deviation / counted_area : 0.0;
   figures.area_error = area_count > 0 ? area_error / area_count : 0.0;
   if (!errors) return figures;

@@ -1,4 +1,4 @@
-// The quality figures of DESIGN.md section 4, the same definitions for the
+// The quality figures of docs/design.md section 4, the same definitions for the
 // stopping rule, the step control, the tests, the benchmark and the panel.
 //
 // With s = sqrt(area_out / area_in), so that uniform scale is not error:
@@ -9,7 +9,14 @@
 //   weighted by output area, in degrees;
 // - flipped: non-collapsed triangles with normal . axis < 0;
 // - edge error: mean over unique edges of |len_out / (s len_in) - 1|;
-// - area error: mean over triangles of |area_out / (s^2 area_in) - 1|.
+// - area error: mean over triangles of |area_out / (s^2 area_in) - 1|;
+// - folded edges: edges between exactly two non-collapsed triangles whose
+//   unit normals are more than 120 degrees apart (dot < -0.5); a polycube
+//   has none of its own (its edges turn by 90 degrees), and it needs no
+//   labels, so it also judges runs whose labels changed;
+// - collapsed area: the input area of the collapsed triangles over the total;
+// - nearest-axis deviation: like the normal deviation, against the axis
+//   nearest each output normal (0 for any polycube, whatever its labels).
 // Edges and triangles with zero input size have no ratio and are left out of
 // the two error means.
 #pragma once
@@ -29,6 +36,9 @@ struct Figures {
   double area_error = 0.0;
   int flipped_faces = 0;
   int collapsed_faces = 0;
+  int folded_edges = 0;
+  double collapsed_area = 0.0;  // share of the input's area
+  double nearest_axis_deviation_max_deg = 0.0;
 };
 
 // The same definitions per triangle: which faces a step folds (the robust
@@ -62,6 +72,10 @@ class QualityMeasure {
   // The share of the input's area in the collapsed triangles of `states`.
   double collapsed_area_fraction(const FaceStates& states) const;
 
+  // The input's folded edges (no triangle of the input counts as collapsed
+  // unless it has zero area): what no output may exceed.
+  int input_folded_edges() const { return input_folded_edges_; }
+
   // Labels changed by a repair: the input's measurements stay.
   void set_labels(std::vector<int> triangle_labels) { labels_ = std::move(triangle_labels); }
 
@@ -72,6 +86,10 @@ class QualityMeasure {
   double input_total_ = 0.0;
   std::vector<std::pair<int, int>> edges_;
   std::vector<double> input_lengths_;
+  std::vector<std::pair<int, int>> interior_pairs_;  // the two triangles of each edge that has exactly two
+  int input_folded_edges_ = 0;
+
+  int folded_edges(const Vertices& output, const std::vector<char>& collapsed) const;
 };
 
 }  // namespace polycube

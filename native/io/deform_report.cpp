@@ -22,7 +22,10 @@ void add_figures(JsonWriter& json, const Figures& f) {
       .add("edge_error", f.edge_error)
       .add("area_error", f.area_error)
       .add("flipped_faces", f.flipped_faces)
-      .add("collapsed_faces", f.collapsed_faces);
+      .add("collapsed_faces", f.collapsed_faces)
+      .add("collapsed_area", f.collapsed_area)
+      .add("folded_edges", f.folded_edges)
+      .add("nearest_axis_deviation_max_deg", f.nearest_axis_deviation_max_deg);
 }
 
 JsonWriter deform_report(const PolygonMesh& mesh, const DeformResult& r, const DeformOptions& options) {
@@ -33,6 +36,8 @@ JsonWriter deform_report(const PolygonMesh& mesh, const DeformResult& r, const D
       .add("variant", variant_name(options.variant))
       .add("tolerance_deg", options.tolerance_deg)
       .add("iterations", r.iterations)
+      .add("kept_iteration", r.kept_iteration)
+      .add("input_folded_edges", r.input_folded_edges)
       .add("converged", r.converged)
       .add("stopped", r.stopped)
       .add("failure", r.failure)
@@ -45,6 +50,9 @@ JsonWriter deform_report(const PolygonMesh& mesh, const DeformResult& r, const D
   add_faces(json, "unconverged_faces", r.unconverged_faces);
   add_faces(json, "flipped_face_ids", r.flipped_faces);
   add_faces(json, "relabelled_faces", r.relabelled_faces);
+  json.begin_object("given_labels");
+  add_figures(json, r.given_labels_figures);
+  json.end();
   json.begin_array("flatten_attempts");
   for (const auto& a : r.flatten_attempts)
     json.begin_object()

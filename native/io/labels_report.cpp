@@ -6,6 +6,7 @@ namespace polycube {
 
 void add_validation(JsonWriter& json, const LabelValidation& v) {
   json.add("valid", v.valid())
+      .add("realisable", v.realisable())
       .add("charts", v.charts)
       .add("boundaries", v.boundaries)
       .add("corners", v.corners)

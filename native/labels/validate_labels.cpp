@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "labels/axis.h"
+#include "labels/realisability.h"
 #include "mesh/check_input.h"
 #include "mesh/triangulate.h"
 
@@ -13,6 +14,9 @@ const char* violation_kind_name(ViolationKind kind) {
     case ViolationKind::kTooFewNeighbours: return "too_few_neighbours";
     case ViolationKind::kOppositeNeighbours: return "opposite_neighbours";
     case ViolationKind::kCornerTooManyCharts: return "corner_too_many_charts";
+    case ViolationKind::kReversedChart: return "reversed_chart";
+    case ViolationKind::kTurningPoint: return "turning_point";
+    case ViolationKind::kSqueezedFaces: return "squeezed_faces";
   }
   return "unknown";
 }
@@ -96,7 +100,9 @@ LabelValidation validate_labels(const PolygonMesh& mesh, const std::vector<int>&
   const std::vector<int> filled = filled_labels(mesh, labels, &unlabelled);
   const int vertex_count = static_cast<int>(mesh.vertices.rows());
   const MeshAdjacency adjacency = mesh_adjacency(mesh.faces, vertex_count);
-  LabelValidation result = validate_labels(adjacency, charts(adjacency, filled), vertex_count);
+  const Charts chart_set = charts(adjacency, filled);
+  LabelValidation result = validate_labels(adjacency, chart_set, vertex_count);
+  check_realisability(mesh, adjacency, chart_set, filled, result.violations);
   result.unlabelled_faces = unlabelled;
   return result;
 }

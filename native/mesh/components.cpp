@@ -24,4 +24,28 @@ Components components(int vertex_count, const Triangles& triangles) {
   return result;
 }
 
+Eigen::MatrixX3d component_centroids(const Vertices& x, const Components& components) {
+  Eigen::MatrixX3d sum = Eigen::MatrixX3d::Zero(components.count, 3);
+  Eigen::VectorXd count = Eigen::VectorXd::Zero(components.count);
+  for (Eigen::Index v = 0; v < x.rows(); ++v) {
+    const int c = components.of_vertex[v];
+    if (c < 0) continue;
+    sum.row(c) += x.row(v);
+    count[c] += 1.0;
+  }
+  for (int c = 0; c < components.count; ++c) sum.row(c) /= count[c];
+  return sum;
+}
+
+Vertices place_components(const Eigen::MatrixX3d& solution, const Vertices& rest, const Components& components,
+                          const Eigen::MatrixX3d& centroids) {
+  const Eigen::MatrixX3d drift = component_centroids(solution, components) - centroids;
+  Vertices y(solution.rows(), 3);
+  for (Eigen::Index v = 0; v < solution.rows(); ++v) {
+    const int c = components.of_vertex[v];
+    y.row(v) = c < 0 ? Eigen::RowVector3d(rest.row(v)) : Eigen::RowVector3d(solution.row(v) - drift.row(c));
+  }
+  return y;
+}
+
 }  // namespace polycube

@@ -16,4 +16,13 @@ struct Components {
 
 Components components(int vertex_count, const Triangles& triangles);
 
+// The centroid of each component's vertices (#components by 3).
+Eigen::MatrixX3d component_centroids(const Vertices& x, const Components& components);
+
+// `solution` moved so that every component's centroid is at `centroids`;
+// isolated vertices take their positions from `rest`. What every solve of a
+// singular Laplacian needs to be put back in place.
+Vertices place_components(const Eigen::MatrixX3d& solution, const Vertices& rest, const Components& components,
+                          const Eigen::MatrixX3d& centroids);
+
 }  // namespace polycube

@@ -8,7 +8,7 @@
 
 #include <cstring>
 
-#include "labels/auto_labels.h"
+#include "labeller/auto_labels.h"
 #include "labels/axis.h"
 #include "mesh/check_input.h"
 #include "deform/deform.h"
@@ -175,14 +175,15 @@ py::tuple read_mesh_py(const std::string& path) {
   return py::make_tuple(to_numpy(mesh.vertices), to_int_array(mesh.faces.indices), to_int_array(sizes));
 }
 
-// Labels (issue 4): the automatic labeller, the validator and the orientation
+// Labels (docs/design.md section 3): the automatic labeller, the validator and the orientation
 // check; dicts through the same JSON writer as `polycube validate --json`.
 py::array_t<int> auto_labels_py(const DoubleArray& vertices, const IntArray& face_indices, const IntArray& face_sizes,
-                                double compactness, bool repair) {
+                                double detail, std::optional<double> compactness, bool repair, bool straighten) {
   const PolygonMesh mesh = to_mesh(vertices, face_indices, face_sizes);
-  AutoLabelOptions options;
-  options.compactness = compactness;
+  AutoLabelOptions options = AutoLabelOptions::with_detail(detail);
+  if (compactness) options.compactness = *compactness;
   options.repair = repair;
+  if (!straighten) options.straighten_iterations = 0;
   std::vector<int> labels;
   {
     py::gil_scoped_release release;
@@ -255,20 +256,27 @@ every child face keeps its parent's label.)");
         "Read an .off, .obj or .ply file: (vertices (n, 3), face_indices, face_sizes). Raises ValueError.");
 
   m.def("auto_labels", &auto_labels_py, py::arg("vertices"), py::arg("face_indices"), py::arg("face_sizes"),
-        py::kw_only(), py::arg("compactness") = AutoLabelOptions().compactness, py::arg("repair") = true,
+        py::kw_only(), py::arg("detail") = 0.5, py::arg("compactness") = py::none(), py::arg("repair") = true,
+        py::arg("straighten") = true,
         R"(Label every face automatically: (F,) int32, 0..5 = +X, -X, +Y, -Y, +Z, -Z.
 
-Graph cut (alpha-expansion) of fidelity to the normals plus compactness * chart boundary length,
-then local repair of what breaks the polycube conditions. Larger compactness: fewer, rounder
-charts. Deterministic. Raises ValueError on bad input.)");
+Straightens the shape so its normals gather on the axes (unless straighten=False), then a graph
+cut (alpha-expansion) of fidelity to the straightened normals plus compactness * chart boundary
+length, local repair of what breaks the polycube conditions, and relabelling of faces flat charts
+would squeeze. detail (0..1): 0 few large charts, 1 many small ones; compactness, when given,
+overrides the one detail sets (larger: fewer, rounder charts). Deterministic. Raises ValueError
+on bad input.)");
   m.def("validate_labels", &validate_labels_py, py::arg("vertices"), py::arg("face_indices"),
         py::arg("face_sizes"), py::arg("labels"),
-        R"(Check labels against the polycube conditions (DESIGN.md section 3).
+        R"(Check labels against the polycube conditions and their realisability (docs/design.md
+sections 3.2 and 3.5).
 
-Returns {"valid", "charts", "boundaries", "corners", "unlabelled_faces", "violations"}; each
-violation is {"kind", "chart", "label", "label_name", "others", "vertex", "faces"} with kind
-"too_few_neighbours", "opposite_neighbours" or "corner_too_many_charts". -1 labels are judged
-by their nearest axis. Raises ValueError on bad input.)");
+Returns {"valid", "realisable", "charts", "boundaries", "corners", "unlabelled_faces",
+"violations"}; each violation is {"kind", "chart", "label", "label_name", "others", "vertex",
+"faces"} with kind "too_few_neighbours", "opposite_neighbours", "corner_too_many_charts",
+"reversed_chart" (these make labels invalid), "turning_point" or "squeezed_faces" (these make
+flat charts collapse faces). -1 labels are judged by their nearest axis. Raises ValueError on
+bad input.)");
   m.def("orientation", &orientation_py, py::arg("vertices"), py::arg("face_indices"), py::arg("face_sizes"),
         py::arg("labels") = py::none(),
         R"(Check the winding: {"orientable", "consistent", "inconsistent_edges", "components",

@@ -248,8 +248,8 @@ def run_model(name, path, program, out, extra):
     row.update(figures(v_in, v_out, faces, final))
     given_figures = figures(v_in, v_out, faces, given)
     row["max_deg_given"], row["flipped_given"] = given_figures["max_deg"], given_figures["flipped"]
-    row["exact"] = row["max_deg"] < 0.5 and row["flipped"] == 0 and row["folded_out"] <= row["folded_in"]
-    row["good"] = row["exact"] and row["collapsed_area_pct"] < 0.5 and row["collapsed_faces_pct"] < 1.0
+    row["exact"] = bool(row["max_deg"] < 0.5 and row["flipped"] == 0 and row["folded_out"] <= row["folded_in"])
+    row["good"] = bool(row["exact"] and row["collapsed_area_pct"] < 0.5 and row["collapsed_faces_pct"] < 1.0)
     return row
 
 

@@ -148,7 +148,8 @@ def test_validation_selects_exactly_the_offending_faces():
 
     validation = load_validation(cube, label_summary(cube).digest)
     assert validation["valid"] == 0 and validation["charts"] == 7, validation
-    assert validation["kinds"] == {"too_few_neighbours": 1, "opposite_neighbours": 1}, validation
+    # The -Z face inside the +Z top also faces away from its axis.
+    assert validation["kinds"] == {"too_few_neighbours": 1, "opposite_neighbours": 1, "reversed_chart": 1}, validation
 
 
 def test_validation_of_good_labels_selects_nothing_and_goes_stale_when_they_change():
@@ -175,8 +176,10 @@ def test_validation_names_an_inward_wound_mesh_and_labels_for_the_other_winding(
     bpy.ops.object.mode_set(mode='OBJECT')
     add_attribute(sphere.data, "polycube_label", 'INT', outward)
     assert bpy.ops.object.polycube_validate_labels() == {'FINISHED'}
+    bpy.ops.object.mode_set(mode='OBJECT')  # validation showed the reversed charts in Edit Mode
     validation = load_validation(sphere, label_summary(sphere).digest)
-    assert validation["valid"] == 1, validation  # the charts themselves are fine
+    # Chart topology is fine, but against this winding every chart faces away from its axis.
+    assert validation["valid"] == 0 and validation["kinds"]["reversed_chart"] == 6, validation
     assert validation["orientation"] == ["Wound inward", "Labels for the opposite winding"], validation
     # Labels made for this winding (auto labels follow the normals): only the winding is named.
     _auto_label(sphere)

@@ -6,9 +6,12 @@
 #include <chrono>
 #include <fstream>
 
-#include "labels/auto_labels.h"
+#include "labeller/auto_labels.h"
 #include "deform/deform.h"
+#include "deform/quality.h"
+#include "labels/nearest_labels.h"
 #include "labels/orientation.h"
+#include "mesh/triangulate.h"
 #include "labels/validate_labels.h"
 #include "io/labels_io.h"
 #include "io/read_mesh.h"
@@ -117,6 +120,7 @@ TEST(AutoLabels, DeterministicAndCompactnessControlsChartCount) {
   AutoLabelOptions plain;
   plain.compactness = 0.0;
   plain.repair = false;
+  plain.straighten_iterations = 0;  // the input's own normals
   const LabelValidation nearest = validate_labels(bumpy, auto_labels(bumpy, plain));
   const LabelValidation cut = validate_labels(bumpy, auto_labels(bumpy));
   std::printf("  bumpy sphere: compactness 0: %d charts, %zu violations; default: %d charts, %zu violations\n",
@@ -169,9 +173,9 @@ TEST(AutoLabels, OddInputStaysWellDefined) {
 
 std::string cgal_mesh(const std::string& name) { return std::string(POLYCUBE_MESH_DATA) + "/" + name + ".off"; }
 
-// Real models: the labels pass the validator (where one does not, the
-// validator's list is printed); the deformation runs with them. Figures go to the test output (the closing note
-// of issue 4 has the full runs, made with `polycube deform --labels auto`).
+// Real models: the labels pass the validator's polycube conditions (its list,
+// realisability included, is printed); the deformation runs with them.
+// Figures go to the test output (full runs: tests/benchmark/labels_table.py).
 TEST(AutoLabels, RealModels) {
   for (const std::string name : {"fandisk", "elephant", "eight", "bunny00"}) {
     const std::string path = cgal_mesh(name);
@@ -194,7 +198,7 @@ TEST(AutoLabels, RealModels) {
     EXPECT_TRUE(v.valid());
     EXPECT_LT(orientation(mesh, &labels).area_against_labels, 0.05);  // few faces labelled against their normal
     DeformOptions options;
-    options.iterations = 10;  // enough to show it runs; the full figures are in the issue
+    options.iterations = 10;  // enough to show it runs; the full figures: tests/benchmark/labels_table.py
     const DeformResult r = deform(mesh, labels, options);
     print_figures(name, r);
     EXPECT_TRUE(r.positions.allFinite());
@@ -233,3 +237,74 @@ TEST(AutoLabels, InwardCopyIsDetectedAndFlippedLabelsRecoverTheResult) {
 }
 
 }  // namespace
+
+namespace {
+
+// Automatic labels then the default solver, judged as tests/benchmark/labels_table.py
+// judges them: exact, no more folded edges than the input, little collapsed.
+struct Flattened {
+  const char* name;
+  double max_collapsed_area;  // share of the surface
+};
+
+class AutoLabelsFlatten : public ::testing::TestWithParam<Flattened> {};
+
+TEST_P(AutoLabelsFlatten, ExactFoldFreeAndLittleCollapsed) {
+  const Flattened model = GetParam();
+  const std::string path = cgal_mesh(model.name);
+  if (!exists(path)) GTEST_SKIP() << path << " is missing: run `make data` (Debian libcgal-demo)";
+  const PolygonMesh mesh = read_mesh(path);
+  const std::vector<int> labels = auto_labels(mesh);
+  const DeformResult r = deform(mesh, labels);
+  print_figures(model.name, r);
+  std::printf("  %s: collapsed area %.3f%%, folded edges %d (input %d)\n", model.name, 100 * r.figures.collapsed_area,
+              r.figures.folded_edges, r.input_folded_edges);
+  EXPECT_TRUE(r.converged);
+  EXPECT_LT(r.figures.normal_deviation_max_deg, 0.5);
+  EXPECT_EQ(r.figures.flipped_faces, 0);
+  EXPECT_LE(r.figures.folded_edges, r.input_folded_edges);
+  EXPECT_LT(r.figures.collapsed_area, model.max_collapsed_area);
+  EXPECT_LT(r.figures.collapsed_faces, r.triangles / 100);
+  EXPECT_TRUE(r.relabelled_faces.empty());
+}
+
+// Straightening and unsqueezing took these from 1.6% (cactus), 0.6% (joint)
+// and 0.4% (mushroom) of the area collapsed to the figures below.
+INSTANTIATE_TEST_SUITE_P(Models, AutoLabelsFlatten,
+                         ::testing::Values(Flattened{"cactus", 0.005}, Flattened{"joint", 0.001},
+                                           Flattened{"mushroom", 0.005}, Flattened{"handle", 0.001}),
+                         [](const auto& info) { return std::string(info.param.name); });
+
+}  // namespace
+
+// A run that cannot become exact gives back its best fold-free state: never
+// more folded edges than the input, never more flipped faces than its labels
+// had at the start, and says which iteration that was.
+TEST(NeverWorse, ElephantKeepsNoMoreFoldsThanItsInput) {
+  const std::string path = cgal_mesh("elephant");
+  if (!exists(path)) GTEST_SKIP() << path << " is missing: run `make data` (Debian libcgal-demo)";
+  const PolygonMesh mesh = read_mesh(path);
+  for (const bool automatic : {false, true}) {
+    SCOPED_TRACE(automatic ? "automatic labels" : "nearest labels");
+    const std::vector<int> labels = automatic ? auto_labels(mesh) : nearest_labels(mesh);
+    DeformOptions options;
+    options.iterations = 60;
+    int start_flipped = -1;
+    const DeformResult r = deform(mesh, labels, options, [&](int, const Vertices&, const Figures&) { return true; });
+    {
+      const Triangulation t = triangulate(mesh.vertices, mesh.faces);
+      std::vector<int> tl(t.triangles.rows());
+      for (size_t i = 0; i < tl.size(); ++i) tl[i] = labels[t.face_of_triangle[i]];
+      start_flipped = QualityMeasure(mesh.vertices, t.triangles, tl).measure(mesh.vertices).flipped_faces;
+    }
+    print_figures("elephant", r);
+    EXPECT_FALSE(r.converged);
+    EXPECT_LE(r.figures.folded_edges, r.input_folded_edges);
+    EXPECT_LE(r.given_labels_figures.flipped_faces, start_flipped);
+    EXPECT_LE(r.kept_iteration, r.iterations);
+    if (!r.relabelled_faces.empty()) {
+      // Against the labels given, not the relabelled ones.
+      EXPECT_NE(r.given_labels_figures.normal_deviation_mean_deg, r.figures.normal_deviation_mean_deg);
+    }
+  }
+}

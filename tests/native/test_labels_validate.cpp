@@ -1,7 +1,8 @@
-// The validator (DESIGN.md section 3) on labelings whose violations are worked
-// out by hand, and the orientation check.
+// The validator (docs/design.md sections 3.2 and 3.5) on labelings whose
+// violations are worked out by hand, and the orientation check.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 
 #include "labels/axis.h"
@@ -53,6 +54,18 @@ int vertex_at(const PolygonMesh& mesh, Eigen::Vector3d p) {
 
 constexpr int kPX = 0, kPY = 2, kPZ = 4, kNZ = 5;
 
+int count_kind(const LabelValidation& v, ViolationKind kind) {
+  return static_cast<int>(std::count_if(v.violations.begin(), v.violations.end(),
+                                        [&](const LabelViolation& x) { return x.kind == kind; }));
+}
+
+// The polycube conditions' violations, which come first in the list.
+size_t topological(const LabelValidation& v) {
+  return static_cast<size_t>(count_kind(v, ViolationKind::kTooFewNeighbours) +
+                             count_kind(v, ViolationKind::kOppositeNeighbours) +
+                             count_kind(v, ViolationKind::kCornerTooManyCharts));
+}
+
 TEST(ValidateLabels, ExactBoxIsValid) {
   const LabelledMesh box = box6();
   const LabelValidation v = validate_labels(box.mesh, box.labels);
@@ -77,7 +90,8 @@ TEST(ValidateLabels, OppositeChartsSideBySide) {
   LabelledMesh box = box6();
   relabel(box, faces_where(box, kPZ, [](auto c) { return c.x() > 3; }), kNZ);
   const LabelValidation v = validate_labels(box.mesh, box.labels);
-  ASSERT_EQ(v.violations.size(), 1u);
+  ASSERT_EQ(topological(v), 1u);
+  EXPECT_EQ(count_kind(v, ViolationKind::kReversedChart), 1);  // the -Z half faces up
   const LabelViolation& o = v.violations[0];
   EXPECT_EQ(o.kind, ViolationKind::kOppositeNeighbours);
   EXPECT_EQ(o.others.size(), 1u);
@@ -100,7 +114,8 @@ TEST(ValidateLabels, ChartWithThreeNeighbours) {
       faces_where(box, kPZ, [](auto c) { return (c.x() > 5 && c.y() > 4) || (c.x() > 4 && c.y() > 5); });
   relabel(box, patch, kNZ);
   const LabelValidation v = validate_labels(box.mesh, box.labels);
-  ASSERT_EQ(v.violations.size(), 2u);
+  ASSERT_EQ(topological(v), 2u);
+  EXPECT_EQ(count_kind(v, ViolationKind::kReversedChart), 1);
   EXPECT_EQ(v.violations[0].kind, ViolationKind::kTooFewNeighbours);
   EXPECT_EQ(v.violations[0].label, kNZ);
   EXPECT_EQ(v.violations[0].others.size(), 3u);
@@ -119,7 +134,7 @@ TEST(ValidateLabels, FourChartCorner) {
   relabel(box, faces_where(box, kPZ, [](auto c) { return c.x() > 3 && c.y() < 3; }), kPX);
   const std::vector<int> enclosed = faces_where(box, kPZ, [](auto c) { return c.x() > 3 && c.y() > 3; });
   const LabelValidation v = validate_labels(box.mesh, box.labels);
-  ASSERT_EQ(v.violations.size(), 2u);
+  ASSERT_EQ(topological(v), 2u);
   EXPECT_EQ(v.violations[0].kind, ViolationKind::kTooFewNeighbours);
   EXPECT_EQ(v.violations[0].faces, enclosed);
   EXPECT_EQ(v.violations[0].others.size(), 2u);
@@ -142,7 +157,71 @@ TEST(ValidateLabels, B0PublishedLabelingIsValid) {
     std::printf("    %s chart %d (%zu faces)\n", violation_kind_name(violation.kind), violation.chart,
                 violation.faces.size());
   EXPECT_TRUE(v.valid());
+  EXPECT_TRUE(v.realisable());  // no reversed chart, no turning point, nothing squeezed
   EXPECT_GE(v.charts, 6);
+}
+
+// Every +X face of B0's published labeling made -X and the other way round:
+// the chart topology is untouched, but no polycube realises charts that point
+// away from their axes.
+TEST(ValidateLabels, RejectsChartsPointingAwayFromTheirAxes) {
+  const std::string dir = std::string(POLYCUBE_SHARED_DATA) + "/B0";
+  if (!std::ifstream(dir + "/surface.obj").good()) GTEST_SKIP() << dir << " is missing";
+  const PolygonMesh mesh = read_mesh(dir + "/surface.obj");
+  std::vector<int> labels = read_labels(dir + "/labeling.txt", mesh.faces.count());
+  int x_charts = 0;
+  const LabelValidation published = validate_labels(mesh, labels);
+  for (int f = 0; f < mesh.faces.count(); ++f)
+    if (labels[f] / 2 == 0) labels[f] ^= 1;
+  const LabelValidation v = validate_labels(mesh, labels);
+  EXPECT_EQ(v.charts, published.charts);
+  EXPECT_FALSE(v.valid());
+  for (const LabelViolation& violation : v.violations) {
+    EXPECT_EQ(violation.kind, ViolationKind::kReversedChart);
+    EXPECT_EQ(violation.label / 2, 0);
+    ++x_charts;
+  }
+  EXPECT_GE(x_charts, 2);
+}
+
+// An L-shaped tongue of the +X side reaching into the top (+Z) of the box:
+// along y = 1 to x = 3, then an arm up to y = 5 at x in [3, 4]. The +X/+Z
+// boundary must become one edge along Y, but it climbs the arm's left side
+// and comes back down its right side: 3 of its 12 units along Y go
+// backwards, a turning point, reported with the faces where it turns back.
+TEST(ValidateLabels, BoundaryThatDoublesBackIsATurningPoint) {
+  LabelledMesh box = box6();
+  relabel(box, faces_where(box, kPZ, [](const Eigen::Vector3d& c) { return c.x() > 3 && c.y() > 1 && c.y() < 2; }),
+          kPX);
+  relabel(box, faces_where(box, kPZ, [](const Eigen::Vector3d& c) { return c.x() > 3 && c.x() < 4 && c.y() > 2 && c.y() < 5; }),
+          kPX);
+  const LabelValidation v = validate_labels(box.mesh, box.labels);
+  EXPECT_TRUE(v.valid());
+  ASSERT_EQ(count_kind(v, ViolationKind::kTurningPoint), 1);
+  EXPECT_FALSE(v.realisable());
+  for (const LabelViolation& violation : v.violations)
+    if (violation.kind == ViolationKind::kTurningPoint)
+      for (int f : violation.faces) {  // along the arm's right side, x = 4, y in [2, 5]
+        const Eigen::Vector3d c = centroid(box.mesh, f);
+        EXPECT_NEAR(c.x(), 4.0, 0.5 + 1e-9);
+        EXPECT_GT(c.y(), 2.0);
+      }
+}
+
+// A +Y face whose three corners lie on the top (+Z) plane: the top chart and
+// the box's other charts leave it no height, so flat charts squeeze it.
+TEST(ValidateLabels, FaceWithAllCornersOnAnotherChartsPlaneIsSqueezed) {
+  LabelledMesh box = box6();
+  EXPECT_EQ(count_kind(validate_labels(box.mesh, box.labels), ViolationKind::kSqueezedFaces), 0);
+  // A single top face in the middle of the top chart, labelled +Y: every corner is on the +Z plane.
+  const std::vector<int> middle =
+      faces_where(box, kPZ, [](const Eigen::Vector3d& c) { return c.x() > 2 && c.x() < 3 && c.y() > 2 && c.y() < 3; });
+  ASSERT_EQ(middle.size(), 1u);
+  relabel(box, middle, kPY);
+  const LabelValidation v = validate_labels(box.mesh, box.labels);
+  ASSERT_EQ(count_kind(v, ViolationKind::kSqueezedFaces), 1);
+  for (const LabelViolation& violation : v.violations)
+    if (violation.kind == ViolationKind::kSqueezedFaces) EXPECT_EQ(violation.faces, middle);
 }
 
 TEST(ValidateLabels, RejectsBadLabels) {

@@ -1,5 +1,5 @@
-// The `robust` variant (the default) against the targets of issue 6, on the
-// issue's table of real models, next to the paper's two plain variants.
+// The `robust` variant (the default) against its targets (docs/design.md
+// section 2.4) on real models, next to the paper's two plain variants.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -84,7 +84,7 @@ std::set<int> faces_touching_boundary(const PolygonMesh& mesh) {
   return faces;
 }
 
-// One row of the issue's table. `gaps` names the targets the row does not
+// One row of the table. `gaps` names the targets the row does not
 // meet yet ("max": largest normal deviation, "collapsed", "edge", "area":
 // edge and area error); every other target is asserted. The notes in
 // deform.h (kRobust) say what is left.
@@ -94,13 +94,13 @@ struct Row {
   std::set<std::string> gaps;
 };
 
-class IssueTable : public ::testing::TestWithParam<Row> {};
+class ModelTable : public ::testing::TestWithParam<Row> {};
 
-// Targets (issue 6): zero flipped faces; largest normal deviation below the
-// tolerance (on open meshes: over faces not touching the boundary); collapsed
-// faces no more than the plain `fixed` variant; edge and area error no larger
-// than the better plain variant.
-TEST_P(IssueTable, DefaultMethodMeetsTheTargets) {
+// Targets: zero flipped faces and no more folded edges than the input;
+// largest normal deviation below the tolerance (on open meshes: over faces
+// not touching the boundary); collapsed faces no more than the plain `fixed`
+// variant; edge and area error no larger than the better plain variant.
+TEST_P(ModelTable, DefaultMethodMeetsTheTargets) {
   const Row row = GetParam();
   const Model model = load(row.name);
   if (model.mesh.faces.count() == 0) GTEST_SKIP() << row.name << " is missing: run `make data`";
@@ -117,6 +117,7 @@ TEST_P(IssueTable, DefaultMethodMeetsTheTargets) {
 
   EXPECT_EQ(robust.figures.flipped_faces, 0);
   EXPECT_TRUE(robust.flipped_faces.empty());
+  EXPECT_LE(robust.figures.folded_edges, robust.input_folded_edges);
   // A target in `gaps` is not asserted, but the test says when it is met.
   auto target = [&](const std::string& name, bool met) {
     if (!row.gaps.count(name)) EXPECT_TRUE(met) << name << " target";
@@ -138,8 +139,11 @@ TEST_P(IssueTable, DefaultMethodMeetsTheTargets) {
   }
 }
 
-// The issue's rows, then the other libcgal-demo models we tried.
-INSTANTIATE_TEST_SUITE_P(Robust, IssueTable,
+// The models of docs/design.md section 2.4's table, nearest-axis labels or
+// the published ones. The double torus's nearest labels put opposite charts
+// side by side: flat, they make fins (folded edges), so the run keeps a
+// state without them instead of converging.
+INSTANTIATE_TEST_SUITE_P(Robust, ModelTable,
                          ::testing::Values(Row{"larger_sphere", false, {}}, Row{"B0", false, {"collapsed"}},
                                            Row{"fandisk", false, {"collapsed", "edge", "area"}},
                                            Row{"elephant", false, {"max"}},
@@ -148,7 +152,7 @@ INSTANTIATE_TEST_SUITE_P(Robust, IssueTable,
                                            Row{"cactus", false, {"collapsed", "edge", "area"}},
                                            Row{"joint", false, {"edge", "area"}},
                                            Row{"anchor", false, {"max", "area"}},
-                                           Row{"double_torus_example", false, {"collapsed", "edge", "area"}}),
+                                           Row{"double_torus_example", false, {"max", "collapsed", "edge", "area"}}),
                          [](const auto& info) { return info.param.name; });
 
 // A fold-free path, not only a fold-free end: no iteration shows a flipped face.

@@ -65,7 +65,7 @@ def test_auto_labels_on_a_sphere_make_six_valid_charts(native, sphere):
 
 
 def test_auto_labels_options_and_errors(native, sphere):
-    loose = native.auto_labels(*sphere, compactness=0.0, repair=False)
+    loose = native.auto_labels(*sphere, compactness=0.0, repair=False, straighten=False)
     assert np.array_equal(loose, native.nearest_labels(*sphere))
     with pytest.raises(ValueError):
         native.auto_labels(*sphere, compactness=-1.0)
@@ -73,6 +73,38 @@ def test_auto_labels_options_and_errors(native, sphere):
         native.auto_labels(sphere[0], sphere[1], sphere[2][:-1])
     with pytest.raises(TypeError):
         native.auto_labels(*sphere, 2.0)  # options are keyword-only
+    for bad in (-0.1, 1.5, float("nan")):
+        with pytest.raises(ValueError, match="detail"):
+            native.auto_labels(*sphere, detail=bad)
+
+
+def _charts(indices, sizes, labels):
+    """Charts: faces with one label joined across shared edges."""
+    parent = list(range(len(sizes)))
+
+    def find(i):
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    offsets = np.concatenate([[0], np.cumsum(sizes)])
+    owner = {}
+    for f in range(len(sizes)):
+        corners = indices[offsets[f]:offsets[f + 1]]
+        for k in range(len(corners)):
+            edge = tuple(sorted((int(corners[k]), int(corners[(k + 1) % len(corners)]))))
+            g = owner.setdefault(edge, f)
+            if g != f and labels[g] == labels[f]:
+                parent[find(f)] = find(g)
+    return len({find(f) for f in range(len(sizes))})
+
+
+def test_detail_controls_how_many_charts(native, real_mesh):
+    """Less detail, fewer charts: the one knob a user turns."""
+    mesh = real_mesh("elephant")
+    counts = [_charts(mesh[1], mesh[2], native.auto_labels(*mesh, detail=d)) for d in (0.0, 0.5, 1.0)]
+    assert counts[0] < counts[1] < counts[2], counts
 
 
 def test_validate_names_the_violation_and_its_faces(native):
@@ -83,8 +115,10 @@ def test_validate_names_the_violation_and_its_faces(native):
     bad = labels.copy()
     bad[top & (c[:, 0] > 3)] = 5  # half the top turned to -Z: opposite charts side by side
     result = native.validate_labels(vertices, indices, sizes, bad)
-    assert not result["valid"] and result["charts"] == 7
-    [violation] = result["violations"]
+    assert not result["valid"] and not result["realisable"] and result["charts"] == 7
+    # The opposite pair, and the -Z half facing up: a reversed chart.
+    assert sorted(v["kind"] for v in result["violations"]) == ["opposite_neighbours", "reversed_chart"]
+    [violation] = [v for v in result["violations"] if v["kind"] == "opposite_neighbours"]
     assert violation["kind"] == "opposite_neighbours"
     assert violation["label_name"] in ("+Z", "-Z") and len(violation["others"]) == 1
     along = np.flatnonzero(top & (c[:, 0] > 2) & (c[:, 0] < 4))

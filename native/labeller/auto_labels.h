@@ -1,6 +1,8 @@
-// Automatic labeling (DESIGN.md section 3, issue 4): labels that make a clean
+// Automatic labeling (docs/design.md section 3.3): labels that make a clean
 // polycube wherever the shape allows.
 //
+// 0. Straighten the shape (straighten.h) so its normals gather on the axes;
+//    the steps below read the straightened normals, not the input's.
 // 1. Start from the nearest axis of every face normal.
 // 2. Minimise E = sum over faces of area * fidelity(normal, label axis)
 //              + compactness * sum over edges between charts of length * h * V(a, b)
@@ -15,6 +17,8 @@
 //    boundary, or the faces around a corner of four or more charts; a move is
 //    kept only if it lowers the number of violations. Tiny charts the repair
 //    left are merged last.
+// 4. Relabel the triangles that flat charts would squeeze onto a line
+//    (labels/squeezed_triangles.h), and repair again, a few rounds.
 // Deterministic: the same mesh and options give the same labels.
 #pragma once
 
@@ -25,14 +29,27 @@
 namespace polycube {
 
 struct AutoLabelOptions {
+  // The options for one knob a user understands, `detail` in 0..1: 0 gives a
+  // few large charts (a polycube a modeller would sketch), 1 many small ones
+  // that follow every feature; 0.5 is the default below. It sets the
+  // compactness (3 at 0, 0.3 at 0.5, 0.03 at 1) and the straightening's
+  // smoothing rings (12, 3, 1). Throws Error outside 0..1.
+  static AutoLabelOptions with_detail(double detail);
+
   // Weight of chart boundary length against fidelity to the normals: larger
   // gives fewer, rounder charts and ignores smaller features.
   double compactness = 0.3;
-  bool repair = true;        // step 3
+  bool repair = true;        // steps 3 and 4
   int repair_moves = 200;    // at most this many repair moves (each fixes at least one violation)
+  int straighten_iterations = 20;  // step 0; 0 reads the input's normals
+  int straighten_rings = 3;
 };
 
 // One label 0..5 per face. Throws Error on input check_input rejects.
-std::vector<int> auto_labels(const PolygonMesh& mesh, const AutoLabelOptions& options = {});
+// `straightened`, when given, receives the straightened positions of step 0:
+// a shape close to the polycube of these labels, from which the deformation
+// can start (DeformOptions::start).
+std::vector<int> auto_labels(const PolygonMesh& mesh, const AutoLabelOptions& options = {},
+                             Vertices* straightened = nullptr);
 
 }  // namespace polycube

@@ -1,4 +1,4 @@
-#include "labels/auto_labels.h"
+#include "labeller/auto_labels.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -9,6 +9,8 @@
 #include "mesh/check_input.h"
 #include "mesh/mesh_adjacency.h"
 #include "labels/repair_charts.h"
+#include "labels/squeezed_triangles.h"
+#include "labeller/straighten.h"
 #include "mesh/triangulate.h"
 
 namespace polycube {
@@ -19,10 +21,19 @@ namespace {
 // 2013), so a face has little preference between the labels it clearly is
 // not. Beyond 90 degrees it rises again: a face whose label points away from
 // it must fold, so the repair moves (which compare energies) avoid that.
+constexpr double kAgainst = 2.0;
 double fidelity_cost(const Eigen::Vector3d& normal, int label) {
-  constexpr double kSigma = 0.2, kAgainst = 2.0;
+  constexpr double kSigma = 0.2;
   const double dot = normal.dot(label_axis(label)), x = (dot - 1.0) / kSigma;
   return 1.0 - std::exp(-0.5 * x * x) + kAgainst * std::max(0.0, -dot);
+}
+
+// The straightened shape turns whole parts (a curled trunk unrolls), so a
+// label that fits its normal can point away from the input's; the
+// deformation would have to turn such faces over. The same penalty as above,
+// on the input's normal, keeps charts from pointing away from their axes.
+double against_input_cost(const Eigen::Vector3d& input_normal, int label) {
+  return kAgainst * std::max(0.0, -input_normal.dot(label_axis(label)));
 }
 
 // Chart boundaries along creases are what a user expects (fandisk's sharp
@@ -40,15 +51,20 @@ constexpr double kOppositeCost = 4.0;
 // h of the header as a share of sqrt(surface area).
 constexpr double kLengthScale = 0.01;
 
-LabelEnergy label_energy(const PolygonMesh& mesh, const MeshAdjacency& adjacency, double compactness) {
+// mesh: the straightened shape, whose normals the labels follow; input: the
+// input's positions, for the faces' areas and the against-input term.
+LabelEnergy label_energy(const PolygonMesh& mesh, const Vertices& input, const MeshAdjacency& adjacency,
+                         double compactness) {
   const int face_count = mesh.faces.count();
-  std::vector<Eigen::Vector3d> normals(face_count);
+  std::vector<Eigen::Vector3d> normals(face_count), input_normals(face_count);
   std::vector<double> areas(face_count);
   double total_area = 0.0;
   for (int f = 0; f < face_count; ++f) {
     const Eigen::Vector3d n = newell_normal(mesh.vertices, mesh.faces, f);
-    areas[f] = 0.5 * n.norm();
-    normals[f] = areas[f] > 0.0 ? Eigen::Vector3d(n / n.norm()) : Eigen::Vector3d::Zero();
+    normals[f] = n.norm() > 0.0 ? Eigen::Vector3d(n / n.norm()) : Eigen::Vector3d::Zero();
+    const Eigen::Vector3d m = newell_normal(input, mesh.faces, f);
+    areas[f] = 0.5 * m.norm();
+    input_normals[f] = areas[f] > 0.0 ? Eigen::Vector3d(m / m.norm()) : Eigen::Vector3d::Zero();
     total_area += areas[f];
   }
   // Costs in units of the mean face area, so the numbers stay near 1.
@@ -56,7 +72,9 @@ LabelEnergy label_energy(const PolygonMesh& mesh, const MeshAdjacency& adjacency
   LabelEnergy energy;
   energy.data.resize(face_count, 6);
   for (int f = 0; f < face_count; ++f)
-    for (int l = 0; l < 6; ++l) energy.data(f, l) = areas[f] / mean_area * fidelity_cost(normals[f], l);
+    for (int l = 0; l < 6; ++l)
+      energy.data(f, l) =
+          areas[f] / mean_area * (fidelity_cost(normals[f], l) + against_input_cost(input_normals[f], l));
   const double h = kLengthScale * std::sqrt(total_area);
   for (int e = 0; e < adjacency.edge_count(); ++e) {
     const Eigen::Vector3d p = mesh.vertices.row(adjacency.edges[e][0]), q = mesh.vertices.row(adjacency.edges[e][1]);
@@ -79,12 +97,24 @@ LabelEnergy label_energy(const PolygonMesh& mesh, const MeshAdjacency& adjacency
 
 }  // namespace
 
-std::vector<int> auto_labels(const PolygonMesh& mesh, const AutoLabelOptions& options) {
+AutoLabelOptions AutoLabelOptions::with_detail(double detail) {
+  if (!(detail >= 0.0 && detail <= 1.0)) throw Error("detail must be a number from 0 to 1");
+  AutoLabelOptions options;
+  options.compactness = 0.3 * std::pow(10.0, 1.0 - 2.0 * detail);
+  options.straighten_rings = std::max(1, static_cast<int>(std::lround(3.0 * std::pow(4.0, 1.0 - 2.0 * detail))));
+  return options;
+}
+
+std::vector<int> auto_labels(const PolygonMesh& mesh, const AutoLabelOptions& options, Vertices* straightened) {
   check_input(mesh);
   if (!(options.compactness >= 0.0) || !std::isfinite(options.compactness))
     throw Error("compactness must be a finite number of at least 0");
-  const MeshAdjacency adjacency = mesh_adjacency(mesh.faces, static_cast<int>(mesh.vertices.rows()));
-  const LabelEnergy energy = label_energy(mesh, adjacency, options.compactness);
+  const int vertex_count = static_cast<int>(mesh.vertices.rows());
+  const MeshAdjacency adjacency = mesh_adjacency(mesh.faces, vertex_count);
+  const Triangulation triangulation = triangulate(mesh.vertices, mesh.faces);
+  StraightenOptions so{options.straighten_iterations, options.straighten_rings};
+  PolygonMesh straight{straighten(mesh.vertices, triangulation.triangles, so), mesh.faces};
+  const LabelEnergy energy = label_energy(straight, mesh.vertices, adjacency, options.compactness);
   std::vector<int> labels(mesh.faces.count());
   for (int f = 0; f < mesh.faces.count(); ++f) {
     int best = 0;
@@ -99,7 +129,20 @@ std::vector<int> auto_labels(const PolygonMesh& mesh, const AutoLabelOptions& op
     labels = merge_tiny_charts(adjacency, energy, areas, std::move(labels), options.repair_moves);
     labels = repair_charts(adjacency, energy, std::move(labels), options.repair_moves);
     labels = merge_tiny_charts(adjacency, energy, areas, std::move(labels), options.repair_moves);
+    // Squeezed triangles, then what relabelling them broke; a few rounds,
+    // as each repair can leave new teeth. Kept only when the polycube
+    // conditions hold as well as before.
+    const int violations = violation_score(adjacency, labels);
+    std::vector<int> unsqueezed = labels;
+    for (int round = 0; round < 3; ++round) {
+      if (unsqueeze_labels(vertex_count, triangulation.triangles, triangulation.face_of_triangle, unsqueezed) == 0)
+        break;
+      unsqueezed = repair_charts(adjacency, energy, std::move(unsqueezed), options.repair_moves);
+      unsqueezed = merge_tiny_charts(adjacency, energy, areas, std::move(unsqueezed), options.repair_moves);
+    }
+    if (violation_score(adjacency, unsqueezed) <= violations) labels = std::move(unsqueezed);
   }
+  if (straightened) *straightened = std::move(straight.vertices);
   return labels;
 }
 
