@@ -24,7 +24,9 @@ from .label_operators import (
 from .operators import OBJECT_OT_polycube_deform
 from .panel import VIEW3D_PT_polycube
 from .preferences import PolycubePreferences
+from .remesh_operator import OBJECT_OT_polycube_remesh
 from .unconverged import OBJECT_OT_polycube_select_unconverged
+from .uv_operator import OBJECT_OT_polycube_uv
 
 _classes = (
     PolycubePreferences,
@@ -34,6 +36,8 @@ _classes = (
     OBJECT_OT_polycube_validate_labels,
     OBJECT_OT_polycube_label_colours,
     OBJECT_OT_polycube_select_unconverged,
+    OBJECT_OT_polycube_uv,
+    OBJECT_OT_polycube_remesh,
     VIEW3D_PT_polycube,
 )
 

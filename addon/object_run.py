@@ -15,7 +15,7 @@ from .label_source import labels_for_run
 from .labels import label_counts
 from .mesh_arrays import read_mesh_arrays
 from .polycube_native import LABEL_NAMES
-from .report import store_report
+from .report import store_labels_used, store_report
 from .subdivide import remove_copy, subdivided_copy
 
 
@@ -91,6 +91,7 @@ class ObjectRun:
         report["seconds"] = dict(report["seconds"], read=self.seconds_read,
                                  deform_call=seconds_solve, write=self.seconds_write)
         store_report(obj, report)
+        store_labels_used(obj, result["labels"])
         return report
 
     def discard(self):

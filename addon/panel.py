@@ -10,10 +10,13 @@ from .label_operators import (
     OBJECT_OT_polycube_auto_label, OBJECT_OT_polycube_label_colours, OBJECT_OT_polycube_validate_labels)
 from .operators import OBJECT_OT_polycube_deform
 from .polycube_native import LABEL_NAMES
+from .polycube_shape import has_polycube
+from .remesh_operator import OBJECT_OT_polycube_remesh
 from .report import advice, load_report, outcome
 from .scrub import shown_iteration
 from .shape_keys import polycube_keys
 from .unconverged import OBJECT_OT_polycube_select_unconverged, unconverged_count
+from .uv_operator import OBJECT_OT_polycube_uv
 from .validation import KIND_NAMES, load_validation
 
 
@@ -41,6 +44,8 @@ class VIEW3D_PT_polycube(bpy.types.Panel):
             if report is not None:
                 _draw_report(layout.box(), report)
             _draw_scrub(layout, obj)
+            if has_polycube(obj):
+                _draw_uses(layout.box())
 
 
 def _draw_labels(layout, obj, settings):
@@ -131,6 +136,13 @@ def _draw_report(layout, report):
             box.label(text=line)
     if unconverged:
         layout.operator(OBJECT_OT_polycube_select_unconverged.bl_idname, icon='RESTRICT_SELECT_OFF')
+
+
+def _draw_uses(layout):
+    layout.label(text="Use the Polycube", icon='MOD_REMESH')
+    row = layout.row(align=True)
+    row.operator(OBJECT_OT_polycube_uv.bl_idname, icon='UV')
+    row.operator(OBJECT_OT_polycube_remesh.bl_idname, icon='MESH_GRID')
 
 
 def _draw_rows(layout, rows):

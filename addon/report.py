@@ -8,6 +8,9 @@ REPORT_PROPERTY = "polycube_report"
 # are kept apart, so the sidebar, which reads the report at every redraw, does not
 # convert them.
 FACES_PROPERTY = "polycube_report_faces"
+# The labels the solver ended with (it may relabel faces), one per face: what the
+# polycube's uses (UV map, quad remesh) read its charts from.
+LABELS_USED_PROPERTY = "polycube_labels_used"
 # Blender 3.x ID properties have no booleans: these come back from 0/1.
 _BOOLEAN_KEYS = ("converged", "stopped")
 
@@ -24,6 +27,16 @@ def report_faces(obj, key):
     stored = obj.get(FACES_PROPERTY)
     values = stored.get(key) if hasattr(stored, "get") else None
     return np.array(values if values is not None else (), dtype=np.int64)
+
+
+def store_labels_used(obj, labels):
+    obj[LABELS_USED_PROPERTY] = np.asarray(labels, dtype=np.int32)
+
+
+def load_labels_used(obj):
+    """The labels of the last run, or None (a run before they were kept)."""
+    stored = obj.get(LABELS_USED_PROPERTY)
+    return np.array(stored, dtype=np.int32) if stored is not None else None
 
 
 def load_report(obj):

@@ -42,7 +42,7 @@ def subdivided_copy(obj, mesh, labels, levels, scheme):
     except ValueError:
         bpy.data.meshes.remove(data)
         raise
-    _carry_face_flags(obj.data, data, parents)
+    carry_face_flags(obj.data, data, parents)
     values = np.asarray(refined["labels"], dtype=np.int32)
     write_label_attribute(data, values)
 
@@ -69,7 +69,7 @@ def remove_copy(copy):
         bpy.data.meshes.remove(data)
 
 
-def _carry_face_flags(source, target, parents):
+def carry_face_flags(source, target, parents):
     for material in source.materials:
         target.materials.append(material)
     for name, dtype in (("material_index", np.int32), ("use_smooth", bool)):

@@ -8,8 +8,8 @@
 namespace polycube {
 
 Arguments::Arguments(const std::vector<std::string>& args, const std::set<std::string>& options_with_value,
-                     const std::set<std::string>& flags) {
-  std::vector<std::string> inputs;
+                     const std::set<std::string>& flags, size_t input_count) {
+  std::vector<std::string>& inputs = inputs_;
   for (size_t k = 0; k < args.size(); ++k) {
     const std::string& arg = args[k];
     if (arg.rfind("--", 0) != 0) {
@@ -27,9 +27,12 @@ Arguments::Arguments(const std::vector<std::string>& args, const std::set<std::s
       throw Error("unknown option " + arg + " (see --help)");
     }
   }
-  if (inputs.size() != 1)
-    throw Error(inputs.empty() ? "no input mesh given" : "more than one input given: '" + inputs[1] + "'");
-  input_ = inputs[0];
+  if (inputs.size() < input_count)
+    throw Error(inputs.empty() ? "no input mesh given"
+                               : "expected " + std::to_string(input_count) + " inputs, got " + std::to_string(inputs.size()));
+  if (inputs.size() > input_count)
+    throw Error((input_count == 1 ? std::string("more than one input") : "more than " + std::to_string(input_count) + " inputs") +
+                " given: '" + inputs[input_count] + "'");
 }
 
 std::string Arguments::get(const std::string& name, const std::string& fallback) const {

@@ -15,5 +15,9 @@ extern const char* const kValidateUsage;
 int validate_command(const std::vector<std::string>& args);
 extern const char* const kRefineUsage;
 int refine_command(const std::vector<std::string>& args);
+extern const char* const kUvUsage;
+int uv_command(const std::vector<std::string>& args);
+extern const char* const kRemeshUsage;
+int remesh_command(const std::vector<std::string>& args);
 
 }  // namespace polycube

@@ -21,6 +21,8 @@ const Command kCommands[] = {
     {"label", polycube::kLabelUsage, polycube::label_command},
     {"validate", polycube::kValidateUsage, polycube::validate_command},
     {"refine", polycube::kRefineUsage, polycube::refine_command},
+    {"uv", polycube::kUvUsage, polycube::uv_command},
+    {"remesh", polycube::kRemeshUsage, polycube::remesh_command},
 };
 
 void print_usage(std::FILE* out) {

@@ -60,19 +60,32 @@ void put_vertex(std::string& out, const Vertices& v, Eigen::Index i) {
   out += '\n';
 }
 
-std::string obj_text(const Vertices& v, const PolygonFaces& f) {
+// uvs: null, or one (u, v) per corner, written as `vt` lines and `f v/vt` corners.
+std::string obj_text(const Vertices& v, const PolygonFaces& f, const CornerUvs* uvs = nullptr) {
   std::string out =
       "# polycube: " + std::to_string(v.rows()) + " vertices, " + std::to_string(f.count()) + " faces\n";
-  out.reserve(v.rows() * 64 + f.indices.size() * 9 + f.count() * 3);
+  out.reserve(v.rows() * 64 + f.indices.size() * (uvs ? 60 : 9) + f.count() * 3);
   for (Eigen::Index i = 0; i < v.rows(); ++i) {
     out += "v ";
     put_vertex(out, v, i);
   }
+  if (uvs)
+    for (Eigen::Index c = 0; c < uvs->rows(); ++c) {
+      out += "vt ";
+      put(out, (*uvs)(c, 0));
+      out += ' ';
+      put(out, (*uvs)(c, 1));
+      out += '\n';
+    }
   for (int i = 0; i < f.count(); ++i) {
     out += 'f';
     for (int k = f.offsets[i]; k < f.offsets[i + 1]; ++k) {
       out += ' ';
       put(out, f.indices[k] + 1LL);  // OBJ counts from 1
+      if (uvs) {
+        out += '/';
+        put(out, k + 1LL);
+      }
     }
     out += '\n';
   }
@@ -170,6 +183,14 @@ void write_mesh(const std::string& path, const Vertices& v, const PolygonFaces& 
   write_file_atomically(path, ext == ".obj"   ? obj_text(v, f)
                               : ext == ".off" ? off_text(v, f)
                                               : ply_bytes(v, f));
+}
+
+void write_obj_with_uvs(const std::string& path, const Vertices& v, const PolygonFaces& f, const CornerUvs& uvs) {
+  check_mesh(path, v, f);
+  if (uvs.rows() != static_cast<Eigen::Index>(f.indices.size()))
+    fail(path, std::to_string(uvs.rows()) + " UVs for " + std::to_string(f.indices.size()) + " face corners");
+  if (!uvs.allFinite()) fail(path, "a UV coordinate is not finite");
+  write_file_atomically(path, obj_text(v, f, &uvs));
 }
 
 }  // namespace polycube

@@ -18,6 +18,10 @@ namespace polycube {
 // An existing file at path is replaced only once the new one is complete.
 void write_mesh(const std::string& path, const Vertices& v, const PolygonFaces& f);
 
+// An .obj with one `vt` per face corner (uvs: #corners by 2, faces.indices
+// order) and `f v/vt` corners, so UV seams survive. Same checks as write_mesh.
+void write_obj_with_uvs(const std::string& path, const Vertices& v, const PolygonFaces& f, const CornerUvs& uvs);
+
 // Writes bytes to path + ".tmp", then renames it over path, so a failure
 // never leaves a partial file behind. Throws Error naming the path. Shared
 // with write_labels.

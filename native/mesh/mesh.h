@@ -13,6 +13,8 @@ namespace polycube {
 
 using Vertices = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 using Triangles = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
+// One (u, v) per face corner, in PolygonFaces::indices order (UVs part at seams).
+using CornerUvs = Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor>;
 
 // Polygon faces as Blender and OBJ keep them: face f uses
 // indices[offsets[f] .. offsets[f+1]). offsets has one entry more than faces.

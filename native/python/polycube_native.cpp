@@ -21,6 +21,9 @@
 #include "io/deform_report.h"
 #include "io/labels_report.h"
 #include "io/read_mesh.h"
+#include "use/polycube_uv.h"
+#include "use/quad_remesh.h"
+#include "use/uv_figures.h"
 
 namespace py = pybind11;
 using namespace polycube;
@@ -219,6 +222,82 @@ py::dict orientation_py(const DoubleArray& vertices, const IntArray& face_indice
 
 py::array_t<int> flip_labels_py(const IntArray& labels) { return to_int_array(flip_labels(to_ints(labels, "labels"))); }
 
+// Uses of the polycube: its UV map and its quad remesh.
+Vertices polycube_positions(const DoubleArray& polycube, const PolygonMesh& mesh) {
+  Vertices positions = to_vertices(polycube, "polycube");
+  if (positions.rows() != mesh.vertices.rows())
+    throw py::value_error("polycube has " + std::to_string(positions.rows()) + " rows but vertices has " +
+                          std::to_string(mesh.vertices.rows()));
+  return positions;
+}
+
+py::dict polycube_uv_py(const DoubleArray& vertices, const IntArray& face_indices, const IntArray& face_sizes,
+                        const DoubleArray& polycube, const std::optional<IntArray>& labels, bool pack,
+                        double padding, bool relax) {
+  const PolygonMesh mesh = to_mesh(vertices, face_indices, face_sizes);
+  const Vertices positions = polycube_positions(polycube, mesh);
+  const std::vector<int> face_labels = labels ? to_ints(*labels, "labels") : std::vector<int>{};
+  PolycubeUvOptions options;
+  options.pack = pack;
+  options.padding = padding;
+  options.relax = relax;
+  PolycubeUv uv;
+  {
+    py::gil_scoped_release release;
+    uv = polycube_uv(mesh, positions, face_labels, options);
+  }
+  py::array_t<double> uvs({static_cast<py::ssize_t>(uv.uvs.rows()), py::ssize_t{2}});
+  if (uv.uvs.size() > 0) std::memcpy(uvs.mutable_data(), uv.uvs.data(), sizeof(double) * uv.uvs.size());
+  py::dict out;
+  out["uvs"] = uvs;
+  out["island_of_face"] = to_int_array(uv.island_of_face);
+  out["label_of_face"] = to_int_array(uv.label_of_face);
+  out["islands"] = uv.islands;
+  return out;
+}
+
+py::dict uv_figures_py(const DoubleArray& vertices, const IntArray& face_indices, const IntArray& face_sizes,
+                       const DoubleArray& uvs) {
+  const PolygonMesh mesh = to_mesh(vertices, face_indices, face_sizes);
+  check_input(mesh);
+  if (uvs.ndim() != 2 || uvs.shape(1) != 2) throw py::value_error("uvs must be a (corners, 2) array");
+  CornerUvs corner_uvs(uvs.shape(0), 2);
+  if (uvs.size() > 0) std::memcpy(corner_uvs.data(), uvs.data(), sizeof(double) * uvs.size());
+  const UvFigures f = uv_figures(mesh, corner_uvs);
+  py::dict out;
+  out["angle_distortion"] = f.angle_distortion;
+  out["area_distortion"] = f.area_distortion;
+  out["collapsed_area"] = f.collapsed_area;
+  out["flipped"] = f.flipped;
+  out["islands"] = f.islands;
+  out["seam_length"] = f.seam_length;
+  return out;
+}
+
+py::dict quad_remesh_py(const DoubleArray& vertices, const IntArray& face_indices, const IntArray& face_sizes,
+                        const DoubleArray& polycube, const std::optional<IntArray>& labels, double edge_length) {
+  const PolygonMesh mesh = to_mesh(vertices, face_indices, face_sizes);
+  const Vertices positions = polycube_positions(polycube, mesh);
+  const std::vector<int> face_labels = labels ? to_ints(*labels, "labels") : std::vector<int>{};
+  QuadRemeshOptions options;
+  options.edge_length = edge_length;
+  QuadRemesh remesh;
+  {
+    py::gil_scoped_release release;
+    remesh = quad_remesh(mesh, positions, face_labels, options);
+  }
+  py::dict out;
+  out["vertices"] = to_numpy(remesh.mesh.vertices);
+  out["face_indices"] = to_int_array(remesh.mesh.faces.indices);
+  out["face_sizes"] = to_int_array(std::vector<int>(remesh.mesh.faces.count(), 4));
+  out["source_face"] = to_int_array(remesh.source_face);
+  out["label"] = to_int_array(remesh.label);
+  out["irregular_vertices"] = remesh.irregular_vertices;
+  out["open_edges"] = remesh.open_edges;
+  out["grid_spacing"] = remesh.grid_spacing;
+  return out;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(polycube_native, m) {
@@ -285,4 +364,29 @@ bad input.)");
 made for the other winding; flip_labels fixes them).)");
   m.def("flip_labels", &flip_labels_py, py::arg("labels"),
         "Every label turned to its opposite axis (+X <-> -X, ...), -1 kept.");
+
+  m.def("polycube_uv", &polycube_uv_py, py::arg("vertices"), py::arg("face_indices"), py::arg("face_sizes"),
+        py::arg("polycube"), py::arg("labels") = py::none(), py::kw_only(), py::arg("pack") = true,
+        py::arg("padding") = PolycubeUvOptions{}.padding, py::arg("relax") = false,
+        R"(A UV map from the mesh's polycube: one island per chart, the polycube's positions in the chart's plane.
+
+polycube: (n, 3) positions of the same vertices on the polycube (the last shape key of a run);
+labels: the labels the solver ended with, or None to read them from the polycube's normals.
+Returns {"uvs" (corners, 2) in face_indices order, "island_of_face", "label_of_face", "islands"}.
+pack: islands packed without overlap into the unit square, one texel density.
+relax: each island re-solved to keep the mesh's angles (least-squares conformal), same islands and seams.
+Raises ValueError on a polycube that does not fit the mesh or is folded (flipped faces).)");
+  m.def("uv_figures", &uv_figures_py, py::arg("vertices"), py::arg("face_indices"), py::arg("face_sizes"),
+        py::arg("uvs"),
+        R"(How good a UV map (uvs: (corners, 2)) is: {"angle_distortion", "area_distortion" (area-weighted
+means of each triangle's singular value ratio and of its area ratio max(r, 1/r); 1 is perfect),
+"collapsed_area" (share of the area mapped to no UV area, left out of the means), "flipped",
+"islands", "seam_length"}.)");
+  m.def("quad_remesh", &quad_remesh_py, py::arg("vertices"), py::arg("face_indices"), py::arg("face_sizes"),
+        py::arg("polycube"), py::arg("labels") = py::none(), py::kw_only(), py::arg("edge_length"),
+        R"(An all-quad mesh of the input from its exact polycube, quads of about edge_length (input units).
+
+Returns {"vertices", "face_indices", "face_sizes" (all 4), "source_face" (input face under each
+quad), "label", "irregular_vertices", "open_edges", "grid_spacing"}. Raises ValueError with one
+sentence: not an exact polycube, a folded one, an edge length larger than the model, ...)");
 }

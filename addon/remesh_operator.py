@@ -1,0 +1,75 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Polycube Remesh: an all-quad copy of the object from its polycube, irregular
+vertices only at the polycube's corners."""
+
+import bpy
+import numpy as np
+
+from . import polycube_native
+from .mesh_arrays import new_mesh
+from .polycube_shape import poll_polycube, polycube_of
+from .report import failure
+from .subdivide import carry_face_flags
+
+REMESH_SUFFIX = " quads"
+
+
+def mesh_area(mesh):
+    areas = np.empty(len(mesh.polygons), dtype=np.float64)
+    mesh.polygons.foreach_get("area", areas)
+    return float(areas.sum())
+
+
+class OBJECT_OT_polycube_remesh(bpy.types.Operator):
+    """A new all-quad object from the last deformation: a grid laid on the polycube's
+    faces and carried back onto the surface"""
+    bl_idname = "object.polycube_remesh"
+    bl_label = "Polycube Remesh"
+    bl_options = {'REGISTER', 'UNDO'}
+
+    mode: bpy.props.EnumProperty(
+        name="Size", default='FACES',
+        items=(('FACES', "Target Faces", "About this many quads"),
+               ('EDGE_LENGTH', "Target Edge Length", "Quads about this wide, in the object's units")))
+    target_faces: bpy.props.IntProperty(name="Target Faces", default=5000, min=6, soft_max=200000)
+    edge_length: bpy.props.FloatProperty(name="Edge Length", default=0.05, min=1e-6, soft_max=10.0,
+                                         subtype='DISTANCE')
+
+    @classmethod
+    def poll(cls, context):
+        return poll_polycube(cls, context)
+
+    def draw(self, context):
+        layout = self.layout
+        layout.prop(self, "mode")
+        layout.prop(self, "target_faces" if self.mode == 'FACES' else "edge_length")
+
+    def execute(self, context):
+        obj = context.active_object
+        try:
+            mesh, positions, labels = polycube_of(obj)
+            # A quad of side h covers h^2 of the input: the count fixes h (scaled by the polycube's own
+            # size inside the module, so the count holds on the polycube too).
+            h = self.edge_length if self.mode == 'EDGE_LENGTH' else (mesh_area(obj.data) / self.target_faces) ** 0.5
+            result = polycube_native.quad_remesh(mesh.vertices, mesh.face_indices, mesh.face_sizes, positions,
+                                                 labels, edge_length=h)
+        except ValueError as error:
+            self.report({'ERROR'}, failure(obj.name, "remeshed", error))
+            return {'CANCELLED'}
+        copy = self._new_object(context, obj, result)
+        self.report({'INFO'}, f"'{copy.name}': {len(result['face_sizes'])} quads, "
+                              f"{result['irregular_vertices']} irregular vertices (polycube corners).")
+        return {'FINISHED'}
+
+    def _new_object(self, context, obj, result):
+        data = new_mesh(obj.name + REMESH_SUFFIX, result["vertices"], result["face_indices"], result["face_sizes"])
+        carry_face_flags(obj.data, data, np.asarray(result["source_face"]))
+        copy = bpy.data.objects.new(data.name, data)
+        for collection in obj.users_collection:
+            collection.objects.link(copy)
+        copy.matrix_world = obj.matrix_world
+        for other in context.selected_objects:
+            other.select_set(False)
+        copy.select_set(True)
+        context.view_layer.objects.active = copy
+        return copy

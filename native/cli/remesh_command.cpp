@@ -1,0 +1,35 @@
+// `polycube remesh IN POLYCUBE --edge-length H --output OUT [--labels FILE]`
+#include <cstdio>
+
+#include "cli/commands.h"
+#include "cli/use_input.h"
+#include "io/write_mesh.h"
+#include "use/quad_remesh.h"
+
+namespace polycube {
+
+const char* const kRemeshUsage =
+    "polycube remesh IN.(off|obj|ply) POLYCUBE.(off|obj|ply) --edge-length H --output OUT [--labels FILE]\n"
+    "  An all-quad mesh of IN from its exact polycube: the polycube's planes snapped in order to a\n"
+    "  grid of spacing H, its squares carried back onto IN. Irregular vertices only at polycube corners.\n"
+    "  POLYCUBE       the mesh's polycube as `polycube deform --output` writes it\n"
+    "  --edge-length  quad edge length, in IN's units (scaled by the polycube's own size)\n"
+    "  --labels       the labels the solver ended with (default: read from the polycube's normals)\n";
+
+int remesh_command(const std::vector<std::string>& args) {
+  const Arguments arguments(args, {"output", "labels", "edge-length"}, {}, 2);
+  if (!arguments.has("output")) throw Error("--output OUT is required");
+  if (!arguments.has("edge-length")) throw Error("--edge-length H is required");
+  const UseInput input = read_use_input(arguments);
+  QuadRemeshOptions options;
+  options.edge_length = arguments.get_double("edge-length", 0.0, 0.0);
+  const QuadRemesh remesh = quad_remesh(input.mesh, input.polycube, input.labels, options);
+  write_mesh(arguments.get("output", ""), remesh.mesh.vertices, remesh.mesh.faces);
+  std::printf("{\"vertices\": %ld, \"quads\": %d, \"irregular_vertices\": %d, \"open_edges\": %d, "
+              "\"grid_spacing\": %.9g}\n",
+              static_cast<long>(remesh.mesh.vertices.rows()), remesh.mesh.faces.count(), remesh.irregular_vertices,
+              remesh.open_edges, remesh.grid_spacing);
+  return 0;
+}
+
+}  // namespace polycube

@@ -1,0 +1,42 @@
+// `polycube uv IN POLYCUBE --output OUT.obj [--labels FILE] [--relax] [--no-pack]`
+#include <cstdio>
+
+#include "cli/commands.h"
+#include "cli/use_input.h"
+#include "io/write_mesh.h"
+#include "use/polycube_uv.h"
+#include "use/uv_figures.h"
+
+namespace polycube {
+
+const char* const kUvUsage =
+    "polycube uv IN.(off|obj|ply) POLYCUBE.(off|obj|ply) --output OUT.obj [--labels FILE] [--relax]\n"
+    "            [--no-pack]\n"
+    "  A UV map from the polycube: one island per chart, the polycube's positions in the chart's\n"
+    "  plane, one texel density, packed into the unit square. OUT.obj is IN with `vt` per corner.\n"
+    "  POLYCUBE  the mesh's polycube as `polycube deform --output` writes it (same vertices, faces)\n"
+    "  --labels  the labels the solver ended with (default: read from the polycube's normals);\n"
+    "            a face turned away from its label is refused\n"
+    "  --relax   re-solve each island to keep the mesh's angles (least-squares conformal),\n"
+    "            keeping the polycube's islands and seams\n"
+    "  --no-pack islands stay in their planes, overlapping\n";
+
+int uv_command(const std::vector<std::string>& args) {
+  const Arguments arguments(args, {"output", "labels"}, {"no-pack", "relax"}, 2);
+  if (!arguments.has("output")) throw Error("--output OUT.obj is required");
+  const UseInput input = read_use_input(arguments);
+  PolycubeUvOptions options;
+  options.pack = !arguments.has("no-pack");
+  options.relax = arguments.has("relax");
+  const PolycubeUv uv = polycube_uv(input.mesh, input.polycube, input.labels, options);
+  write_obj_with_uvs(arguments.get("output", ""), input.mesh.vertices, input.mesh.faces, uv.uvs);
+  const UvFigures figures = uv_figures(input.mesh, uv.uvs);
+  std::printf(
+      "{\"islands\": %d, \"angle_distortion\": %.6g, \"area_distortion\": %.6g, \"collapsed_area\": %.6g, "
+      "\"flipped\": %d, \"seam_length\": %.6g}\n",
+      uv.islands, figures.angle_distortion, figures.area_distortion, figures.collapsed_area, figures.flipped,
+      figures.seam_length);
+  return 0;
+}
+
+}  // namespace polycube

@@ -1,0 +1,272 @@
+// Uses of a finished polycube (native/use/): its UV map and its quad remesh,
+// on voxel polycubes (known answers) and on real models deformed by the solver.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <fstream>
+#include <map>
+#include <set>
+
+#include "deform/deform.h"
+#include "io/read_mesh.h"
+#include "labels/auto_labels.h"
+#include "labels/charts.h"
+#include "labels/nearest_labels.h"
+#include "mesh/mesh_adjacency.h"
+#include "mesh/triangulate.h"
+#include "test_meshes.h"
+#include "use/polycube_uv.h"
+#include "use/quad_remesh.h"
+#include "use/quantise_planes.h"
+#include "use/uv_figures.h"
+
+namespace {
+
+using namespace polycube;
+
+bool exists(const std::string& path) { return std::ifstream(path).good(); }
+
+// An L of voxels: 8 charts, 12 corners.
+test_meshes::LabelledMesh l_block() {
+  std::set<std::array<int, 3>> voxels;
+  test_meshes::add_block(voxels, {0, 0, 0}, 4, 2, 2);
+  test_meshes::add_block(voxels, {0, 2, 0}, 2, 3, 2);
+  return test_meshes::voxel_surface(voxels);
+}
+
+// A mesh and its exact polycube from the solver (labels: auto or nearest).
+struct Deformed {
+  PolygonMesh mesh;
+  Vertices polycube;
+  std::vector<int> labels;  // the solver's final ones
+};
+
+Deformed deformed(const PolygonMesh& mesh, bool auto_labelled) {
+  const std::vector<int> labels = auto_labelled ? auto_labels(mesh) : nearest_labels(mesh);
+  DeformOptions options;
+  options.iterations = 200;
+  const DeformResult result = deform(mesh, labels, options);
+  EXPECT_TRUE(result.converged);
+  return {mesh, result.positions, result.labels};
+}
+
+// Charts that carry area on the polycube: the islands there must be.
+int charts_with_area(const Deformed& d) {
+  const MeshAdjacency adjacency = mesh_adjacency(d.mesh.faces, static_cast<int>(d.mesh.vertices.rows()));
+  const Charts c = charts(adjacency, d.labels);
+  std::vector<double> area(c.count(), 0.0), area_in(c.count(), 0.0);
+  double total = 0.0, total_in = 0.0;
+  for (int f = 0; f < d.mesh.faces.count(); ++f) {
+    const double out = newell_normal(d.polycube, d.mesh.faces, f).norm(), in = newell_normal(d.mesh.vertices, d.mesh.faces, f).norm();
+    total += out, total_in += in;
+  }
+  const double s2 = total / total_in;
+  for (int f = 0; f < d.mesh.faces.count(); ++f) {
+    const double out = newell_normal(d.polycube, d.mesh.faces, f).norm(), in = newell_normal(d.mesh.vertices, d.mesh.faces, f).norm();
+    if (out > 1e-3 * s2 * in) area[c.of_face[f]] += out;
+  }
+  return static_cast<int>(std::count_if(area.begin(), area.end(), [](double a) { return a > 0.0; }));
+}
+
+// Packed islands: their bounding boxes inside the unit square and pairwise apart.
+void expect_islands_apart(const PolycubeUv& uv, const PolygonFaces& faces) {
+  std::vector<Eigen::AlignedBox2d> boxes(uv.islands);
+  for (int f = 0; f < faces.count(); ++f)
+    for (int k = faces.offsets[f]; k < faces.offsets[f + 1]; ++k) boxes[uv.island_of_face[f]].extend(uv.uvs.row(k).transpose());
+  for (int i = 0; i < uv.islands; ++i) {
+    EXPECT_GE(boxes[i].min().minCoeff(), 0.0);
+    EXPECT_LE(boxes[i].max().maxCoeff(), 1.0 + 1e-12);
+    for (int j = i + 1; j < uv.islands; ++j)
+      EXPECT_TRUE(boxes[i].intersection(boxes[j]).isEmpty() ||
+                  boxes[i].intersection(boxes[j]).sizes().minCoeff() <= 0.0)
+          << "islands " << i << " and " << j << " overlap";
+  }
+}
+
+double point_triangle_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                               const Eigen::Vector3d& c) {
+  // The closest point over the triangle, by its plane or else its three edges.
+  const Eigen::Vector3d n = (b - a).cross(c - a);
+  if (n.squaredNorm() > 0.0) {
+    const Eigen::Vector3d q = p - n.dot(p - a) / n.squaredNorm() * n;
+    const double w0 = (b - q).cross(c - q).dot(n), w1 = (c - q).cross(a - q).dot(n), w2 = (a - q).cross(b - q).dot(n);
+    if (w0 >= 0 && w1 >= 0 && w2 >= 0) return (p - q).norm();
+  }
+  auto segment = [&](const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
+    const double len2 = (v - u).squaredNorm();
+    const double t = len2 > 0 ? std::clamp((p - u).dot(v - u) / len2, 0.0, 1.0) : 0.0;
+    return (p - (u + t * (v - u))).norm();
+  };
+  return std::min({segment(a, b), segment(b, c), segment(c, a)});
+}
+
+// Every face a quad, every edge in exactly two quads walked once each way (closed, manifold,
+// oriented), the Euler characteristic of the input, every vertex on the input surface.
+void expect_good_quad_mesh(const QuadRemesh& r, const PolygonMesh& input) {
+  const PolygonFaces& faces = r.mesh.faces;
+  ASSERT_GT(faces.count(), 0);
+  for (int f = 0; f < faces.count(); ++f) ASSERT_EQ(faces.size(f), 4);
+  std::map<std::pair<int, int>, int> directed;
+  for (int f = 0; f < faces.count(); ++f)
+    for (int k = 0; k < 4; ++k) ++directed[{faces.indices[4 * f + k], faces.indices[4 * f + (k + 1) % 4]}];
+  for (const auto& [edge, uses] : directed) {
+    EXPECT_EQ(uses, 1);
+    EXPECT_EQ(directed.count({edge.second, edge.first}), 1u) << "open edge";
+  }
+  EXPECT_EQ(r.open_edges, 0);
+  const long euler_out = r.mesh.vertices.rows() - static_cast<long>(directed.size()) / 2 + faces.count();
+  const MeshAdjacency adjacency = mesh_adjacency(input.faces, static_cast<int>(input.vertices.rows()));
+  const long euler_in = input.vertices.rows() - adjacency.edge_count() + input.faces.count();
+  EXPECT_EQ(euler_out, euler_in);
+
+  const Triangulation t = triangulate(input.vertices, input.faces);
+  const double diagonal = (input.vertices.colwise().maxCoeff() - input.vertices.colwise().minCoeff()).norm();
+  double worst = 0.0;
+  for (Eigen::Index v = 0; v < r.mesh.vertices.rows(); ++v) {
+    double nearest = INFINITY;
+    for (Eigen::Index k = 0; k < t.triangles.rows() && nearest > 1e-9 * diagonal; ++k)
+      nearest = std::min(nearest, point_triangle_distance(r.mesh.vertices.row(v), input.vertices.row(t.triangles(k, 0)),
+                                                          input.vertices.row(t.triangles(k, 1)),
+                                                          input.vertices.row(t.triangles(k, 2))));
+    worst = std::max(worst, nearest);
+  }
+  EXPECT_LT(worst, 1e-6 * diagonal);
+}
+
+TEST(QuantisePlanes, KeepsOrderAndDistinctPlanesNearTheirPlace) {
+  // Planes closer than h must still get steps of their own, in order.
+  const AxisGrid grid = quantise_planes({0.0, 0.05, 0.05, 0.1, 1.0, 3.02, 3.02 + 1e-12}, 0.5, 1e-9);
+  ASSERT_EQ(grid.planes.size(), 5u);
+  for (size_t i = 1; i < grid.steps.size(); ++i) EXPECT_GT(grid.steps[i], grid.steps[i - 1]);
+  EXPECT_EQ(grid.steps.back(), 6);  // 3.02 / 0.5 rounds to 6, nothing forces it off
+  EXPECT_EQ(grid.steps[3], 2);      // 1.0 / 0.5
+  EXPECT_EQ(grid.steps[0], -1);     // the three planes near 0 spread both ways: -1, 0, 1
+  for (size_t i = 0; i < grid.planes.size(); ++i) {
+    EXPECT_EQ(grid.to_grid(grid.planes[i]), static_cast<double>(grid.steps[i]));
+    EXPECT_EQ(grid.from_grid(static_cast<double>(grid.steps[i])), grid.planes[i]);
+  }
+  for (double x : {-1.0, 0.02, 0.5, 2.0, 4.0}) EXPECT_NEAR(grid.from_grid(grid.to_grid(x)), x, 1e-12);
+}
+
+TEST(PolycubeUv, OnAVoxelPolycubeEveryChartIsOneUndistortedIsland) {
+  const test_meshes::LabelledMesh block = l_block();
+  const PolycubeUv uv = polycube_uv(block.mesh, block.mesh.vertices, block.labels);
+  const MeshAdjacency adjacency = mesh_adjacency(block.mesh.faces, static_cast<int>(block.mesh.vertices.rows()));
+  EXPECT_EQ(uv.islands, charts(adjacency, block.labels).count());
+  EXPECT_EQ(uv.islands, 8);
+  expect_islands_apart(uv, block.mesh.faces);
+  const UvFigures figures = uv_figures(block.mesh, uv.uvs);
+  EXPECT_EQ(figures.islands, uv.islands);
+  EXPECT_EQ(figures.flipped, 0);
+  EXPECT_NEAR(figures.angle_distortion, 1.0, 1e-9);
+  EXPECT_NEAR(figures.area_distortion, 1.0, 1e-9);
+  EXPECT_EQ(figures.collapsed_area, 0.0);
+}
+
+TEST(PolycubeUv, RealModelsGetOneIslandPerChartPackedApart) {
+  const std::string eight = std::string(POLYCUBE_MESH_DATA) + "/eight.off";
+  if (!exists(eight)) GTEST_SKIP() << eight << " is missing: run `make data`";
+  for (const auto& [name, d] : {std::pair{"eight", deformed(read_mesh(eight), true)},
+                                std::pair{"sphere", deformed(test_meshes::uv_sphere(32, 16), false)}}) {
+    SCOPED_TRACE(name);
+    const PolycubeUv uv = polycube_uv(d.mesh, d.polycube, d.labels);
+    EXPECT_EQ(uv.islands, charts_with_area(d));
+    expect_islands_apart(uv, d.mesh.faces);
+    const UvFigures figures = uv_figures(d.mesh, uv.uvs);
+    EXPECT_EQ(figures.flipped, 0);
+    EXPECT_LT(figures.collapsed_area, 0.06);
+    // The polycube map's own distortion: measured 1.79 (eight), 1.25 (sphere).
+    EXPECT_LT(figures.angle_distortion, 2.0);
+    std::printf("  %-8s islands=%d angle=%.3f area=%.3f collapsed=%.4f seams=%.3f\n", name, uv.islands,
+                figures.angle_distortion, figures.area_distortion, figures.collapsed_area, figures.seam_length);
+  }
+}
+
+TEST(PolycubeUv, RelaxedIslandsKeepTheAnglesAndGiveCollapsedFacesArea) {
+  const std::string eight = std::string(POLYCUBE_MESH_DATA) + "/eight.off";
+  if (!exists(eight)) GTEST_SKIP() << eight << " is missing: run `make data`";
+  const Deformed d = deformed(read_mesh(eight), true);
+  PolycubeUvOptions options;
+  options.relax = true;
+  const PolycubeUv plain = polycube_uv(d.mesh, d.polycube, d.labels);
+  const PolycubeUv relaxed = polycube_uv(d.mesh, d.polycube, d.labels, options);
+  EXPECT_EQ(relaxed.islands, plain.islands);
+  EXPECT_EQ(relaxed.island_of_face, plain.island_of_face);
+  expect_islands_apart(relaxed, d.mesh.faces);
+  const UvFigures before = uv_figures(d.mesh, plain.uvs), after = uv_figures(d.mesh, relaxed.uvs);
+  EXPECT_EQ(after.islands, plain.islands);
+  EXPECT_EQ(after.seam_length, before.seam_length);
+  EXPECT_EQ(after.flipped, 0);
+  EXPECT_EQ(after.collapsed_area, 0.0);  // 5% of the area had none before
+  EXPECT_GT(before.collapsed_area, 0.01);
+  EXPECT_LT(after.angle_distortion, 1.1);  // measured 1.047, from 1.79
+  EXPECT_LT(after.area_distortion, before.area_distortion);
+}
+
+TEST(PolycubeUv, RefusesAFlippedPolycube) {
+  const test_meshes::LabelledMesh block = l_block();
+  std::vector<int> labels = block.labels;
+  labels[3] ^= 1;  // the polycube faces away from this label
+  try {
+    polycube_uv(block.mesh, block.mesh.vertices, labels);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("flipped face (face 3"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(polycube_uv(block.mesh, block.mesh.vertices.topRows(5), block.labels), Error);
+}
+
+TEST(QuadRemesh, AVoxelPolycubeGetsItsOwnGrid) {
+  const test_meshes::LabelledMesh block = l_block();
+  QuadRemeshOptions options;
+  options.edge_length = 0.5;
+  const QuadRemesh r = quad_remesh(block.mesh, block.mesh.vertices, block.labels, options);
+  expect_good_quad_mesh(r, block.mesh);
+  EXPECT_EQ(r.mesh.faces.count(), 4 * block.mesh.faces.count());  // each unit square in four
+  // Irregular vertices are the L's 12 corners: 10 convex ones in 3 quads, the notch's two in 5.
+  EXPECT_EQ(r.irregular_vertices, 12);
+}
+
+TEST(QuadRemesh, RealModelsGiveClosedManifoldQuadsOnTheSurface) {
+  const std::string eight = std::string(POLYCUBE_MESH_DATA) + "/eight.off";
+  const std::string bone = std::string(POLYCUBE_SHARED_DATA) + "/bone/surface.obj";
+  if (!exists(eight) || !exists(bone)) GTEST_SKIP() << "run `make data`";
+  for (const auto& [name, d, h] : {std::tuple{"eight", deformed(read_mesh(eight), true), 0.03},
+                                   std::tuple{"bone", deformed(read_mesh(bone), true), 0.02},
+                                   std::tuple{"sphere", deformed(test_meshes::uv_sphere(32, 16), false), 0.1}}) {
+    SCOPED_TRACE(name);
+    QuadRemeshOptions options;
+    options.edge_length = h;
+    const QuadRemesh r = quad_remesh(d.mesh, d.polycube, d.labels, options);
+    expect_good_quad_mesh(r, d.mesh);
+    const double regular = 1.0 - double(r.irregular_vertices) / r.mesh.vertices.rows();
+    EXPECT_GE(regular, 0.95);
+    std::printf("  %-8s quads=%d irregular=%d regular=%.3f\n", name, r.mesh.faces.count(), r.irregular_vertices, regular);
+  }
+}
+
+TEST(QuadRemesh, ClearErrors) {
+  const test_meshes::LabelledMesh block = l_block();
+  QuadRemeshOptions options;
+  auto message = [&](const PolygonMesh& mesh, const Vertices& polycube, const std::vector<int>& labels) {
+    try {
+      quad_remesh(mesh, polycube, labels, options);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  options.edge_length = 10.0;
+  EXPECT_NE(message(block.mesh, block.mesh.vertices, block.labels).find("larger than the model"), std::string::npos);
+  options.edge_length = 0.0;
+  EXPECT_NE(message(block.mesh, block.mesh.vertices, block.labels).find("positive"), std::string::npos);
+  options.edge_length = 0.5;
+  std::vector<int> flipped = block.labels;
+  flipped[0] ^= 1;
+  EXPECT_NE(message(block.mesh, block.mesh.vertices, flipped).find("flipped"), std::string::npos);
+  // A sphere is no polycube: its faces are not flat on their axes.
+  const PolygonMesh sphere = test_meshes::uv_sphere(16, 8);
+  EXPECT_NE(message(sphere, sphere.vertices, {}).find("not exact"), std::string::npos);
+}
+
+}  // namespace
