@@ -43,10 +43,12 @@ def outside_blender():
     parser.add_argument("--faces", type=int, default=3000, help="quads to aim for (QuadriFlow gets ours)")
     parser.add_argument("--models", default=",".join(name for name, _, _ in MODELS))
     parser.add_argument("--blender", default="blender")
+    parser.add_argument("--pictures", default="", help="folder for the README's pictures (fandisk, suzanne)")
     args = parser.parse_args()
     OUT.mkdir(parents=True, exist_ok=True)
     command = [args.blender, "-b", "--factory-startup", "--python-exit-code", "1", "--python", __file__, "--",
-               "--faces", str(args.faces), "--models", args.models]
+               "--faces", str(args.faces), "--models", args.models,
+               "--pictures", os.path.abspath(args.pictures) if args.pictures else ""]
     result = subprocess.run(command, capture_output=True, text=True)
     tables = [line[len("TABLE "):] for line in result.stdout.splitlines() if line.startswith("TABLE ")]
     print("\n".join(tables))
@@ -57,6 +59,66 @@ def outside_blender():
 
 # ------------------------------------------------------------------ inside Blender
 
+PICTURED = ("fandisk", "suzanne")
+
+
+def render_pictures(shown, folder):
+    """remesh.png: our quads beside QuadriFlow's, a row per model; uv-checker.png: a checker
+    texture on our polycube UVs. Workbench renders, edges drawn by a wireframe copy."""
+    import bpy
+    from mathutils import Vector
+    folder.mkdir(parents=True, exist_ok=True)
+    rows = [shown[name] for name in PICTURED if name in shown]
+    checker = bpy.data.images.new("checker", 1024, 1024)
+    checker.generated_type = 'UV_GRID'
+    material = bpy.data.materials.new("checker")
+    material.use_nodes = True
+    texture = material.node_tree.nodes.new("ShaderNodeTexImage")
+    texture.image = checker
+    material.node_tree.links.new(texture.outputs["Color"],
+                                 material.node_tree.nodes["Principled BSDF"].inputs["Base Color"])
+    material.node_tree.nodes.active = texture
+    for filename, grid, colour_type in (("remesh.png", [row[:2] for row in rows], 'OBJECT'),
+                                       ("uv-checker.png", [[row[2] for row in rows]], 'TEXTURE')):
+        scene = bpy.data.scenes.new(filename)
+        view = Vector((0.6, -1.0, 0.7)).normalized()
+        rotation = (-view).to_track_quat('-Z', 'Y')
+        right, up = rotation @ Vector((1, 0, 0)), rotation @ Vector((0, 1, 0))
+        for r, objects in enumerate(grid):
+            for c, obj in enumerate(objects):
+                corners = [obj.matrix_world @ Vector(corner) for corner in obj.bound_box]
+                centre = sum(corners, Vector()) / 8
+                size = max((a - b).length for a in corners for b in corners)
+                obj.scale = (1.0 / size,) * 3
+                obj.location = -centre / size + right * 0.8 * c - up * 0.8 * r
+                scene.collection.objects.link(obj)
+                obj.color = (0.85, 0.85, 0.85, 1.0)
+                if colour_type == 'TEXTURE':
+                    obj.data.materials.append(material)
+                else:
+                    wire = obj.copy()
+                    wire.modifiers.new("wire", 'WIREFRAME').thickness = 0.0015 * size
+                    wire.color = (0.05, 0.05, 0.05, 1.0)
+                    scene.collection.objects.link(wire)
+        camera = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
+        camera.data.type = 'ORTHO'
+        columns, lines = max(len(objects) for objects in grid), len(grid)
+        aspect = (500 * columns) / (400 * lines)
+        camera.data.ortho_scale = max(0.8 * columns, 0.8 * lines * aspect)
+        camera.location = right * 0.4 * (columns - 1) - up * 0.4 * (lines - 1) + view * 10
+        camera.rotation_euler = rotation.to_euler()
+        scene.collection.objects.link(camera)
+        scene.camera = camera
+        scene.render.engine = 'BLENDER_WORKBENCH'
+        scene.render.resolution_x, scene.render.resolution_y = 500 * columns, 400 * lines
+        scene.render.filepath = str(folder / filename)
+        scene.display.shading.light = 'STUDIO'
+        scene.display.shading.color_type = colour_type
+        scene.world = bpy.data.worlds.new(filename)
+        scene.world.color = (1.0, 1.0, 1.0)
+        scene.view_settings.view_transform = 'Standard'
+        bpy.ops.render.render(write_still=True, scene=scene.name)
+
 def inside_blender(argv):
     import bpy
     import numpy as np
@@ -66,6 +128,8 @@ def inside_blender(argv):
 
     faces_wanted = int(argv[argv.index("--faces") + 1])
     wanted = argv[argv.index("--models") + 1].split(",")
+    pictures = argv[argv.index("--pictures") + 1] if "--pictures" in argv else ""
+    shown = {}  # model -> (our quads, QuadriFlow's, our UVs) objects, for the pictures
 
     def write_off(path, vertices, indices, sizes):
         lines = ["OFF", f"{len(vertices)} {len(sizes)} 0"] + ["%r %r %r" % tuple(v) for v in vertices]
@@ -208,12 +272,16 @@ def inside_blender(argv):
             row["quadriflow"] = mesh_figures(*mesh_arrays(obj), reference)
         except RuntimeError as error:
             row["quadriflow_error"] = str(error).strip().splitlines()[-1]
-        bpy.data.objects.remove(obj)
+        quadriflow_object = obj
 
         start = time.perf_counter()
         uv = native.polycube_uv(vertices, indices, sizes, positions)
         row["seconds_uv_ours"] = time.perf_counter() - start
         row["uv_ours"] = dict(native.uv_figures(vertices, indices, sizes, uv["uvs"]), islands_charts=uv["islands"])
+        start = time.perf_counter()
+        uv = native.polycube_uv(vertices, indices, sizes, positions, relax=True)
+        row["seconds_uv_conformal"] = time.perf_counter() - start
+        row["uv_conformal"] = native.uv_figures(vertices, indices, sizes, uv["uvs"])
         obj = new_object(name + " smart", vertices, indices, sizes)
         obj.data.uv_layers.new(name="UVMap")
         bpy.context.view_layer.objects.active = obj
@@ -226,8 +294,19 @@ def inside_blender(argv):
         bpy.ops.object.mode_set(mode='OBJECT')
         row["uv_smart"] = native.uv_figures(vertices, indices, sizes, corner_uvs(obj))
         bpy.data.objects.remove(obj)
+        if pictures and name in PICTURED:
+            textured = new_object(name + " polycube UV", vertices, indices, sizes)
+            layer = textured.data.uv_layers.new(name="Polycube")
+            layer.data.foreach_set("uv", np.asarray(
+                native.polycube_uv(vertices, indices, sizes, positions)["uvs"], np.float32).ravel())
+            shown[name] = (new_object(name + " quads", ours["vertices"], ours["face_indices"], ours["face_sizes"]),
+                           quadriflow_object, textured)
+        else:
+            bpy.data.objects.remove(quadriflow_object)
 
     (OUT / "results.json").write_text(json.dumps(rows, indent=1))
+    if pictures:
+        render_pictures(shown, pathlib.Path(pictures))
     print("TABLE Remesh (ours / QuadriFlow at our face count):\nTABLE")
     print("TABLE | model | faces | quads % | regular vertices % | Hausdorff / diagonal | manifold, closed | seconds |")
     print("TABLE |---|---|---|---|---|---|---|")
@@ -238,25 +317,27 @@ def inside_blender(argv):
         o, q = row["ours"], row.get("quadriflow")
         if q is None:
             print(f"TABLE | {row['model']} | {o['faces']} / failed | {100 * o['quads']:.1f} / - | "
-                  f"{100 * o['valence4']:.1f} / - | {o['hausdorff']:.5f} / - | {o['manifold_closed']} / - | "
+                  f"{100 * o['valence4']:.1f} / - | {o['hausdorff']:.5f} / - | {closed(o)} / - | "
                   f"{row['seconds_ours']:.2f} (+{row['seconds_deform']:.2f} deform) / - |")
             continue
         print(f"TABLE | {row['model']} | {o['faces']} / {q['faces']} | {100 * o['quads']:.1f} / {100 * q['quads']:.1f} | "
               f"{100 * o['valence4']:.1f} / {100 * q['valence4']:.1f} | {o['hausdorff']:.5f} / {q['hausdorff']:.5f} | "
               f"{closed(o)} / {closed(q)} | "
               f"{row['seconds_ours']:.2f} (+{row['seconds_deform']:.2f} deform) / {row['seconds_quadriflow']:.2f} |")
-    print("TABLE\nTABLE UV (ours / Smart UV Project):\nTABLE")
-    print("TABLE | model | angle distortion | area distortion | islands | seam length | collapsed area % | seconds |")
+    print("TABLE\nTABLE UV (ours: polycube positions / ours --relax: conformal in the same islands / Smart UV Project):\nTABLE")
+    print("TABLE | model | angle distortion | area distortion | islands | seam length | UV-collapsed area % | seconds |")
     print("TABLE |---|---|---|---|---|---|---|")
     for row in rows:
         if not row["exact"]:
             continue
-        o, s = row["uv_ours"], row["uv_smart"]
-        print(f"TABLE | {row['model']} | {o['angle_distortion']:.3f} / {s['angle_distortion']:.3f} | "
-              f"{o['area_distortion']:.3f} / {s['area_distortion']:.3f} | {o['islands']} / {s['islands']} | "
-              f"{o['seam_length']:.3g} / {s['seam_length']:.3g} | {100 * o['collapsed_area']:.2f} / "
-              f"{100 * s['collapsed_area']:.2f} | {row['seconds_uv_ours']:.3f} / {row['seconds_uv_smart']:.3f} |")
+        o, c, s = row["uv_ours"], row["uv_conformal"], row["uv_smart"]
 
+        def three(key, form):
+            return " / ".join(format(f[key], form) for f in (o, c, s))
+        seconds = " / ".join(f"{row[k]:.3f}" for k in ("seconds_uv_ours", "seconds_uv_conformal", "seconds_uv_smart"))
+        collapsed = " / ".join(f"{100 * f['collapsed_area']:.2f}" for f in (o, c, s))
+        print(f"TABLE | {row['model']} | {three('angle_distortion', '.3f')} | {three('area_distortion', '.3f')} | "
+              f"{three('islands', 'd')} | {three('seam_length', '.3g')} | {collapsed} | {seconds} |")
 
 if __name__ == "__main__":
     if "bpy" in sys.modules or "--" in sys.argv:
