@@ -68,12 +68,19 @@ def face_of_corner(mesh):
     """The face each loop (face corner) belongs to."""
     sizes = np.empty(len(mesh.polygons), dtype=np.int32)
     mesh.polygons.foreach_get("loop_total", sizes)
+    faces = np.empty(len(mesh.loops), dtype=np.int64)
+    faces[corner_loops(mesh)] = np.repeat(np.arange(len(sizes)), sizes)
+    return faces
+
+
+def corner_loops(mesh):
+    """The loop of each face corner, corners face by face (read_mesh_arrays' order)."""
+    sizes = np.empty(len(mesh.polygons), dtype=np.int32)
+    mesh.polygons.foreach_get("loop_total", sizes)
     starts = np.empty(len(mesh.polygons), dtype=np.int32)
     mesh.polygons.foreach_get("loop_start", starts)
-    faces = np.empty(len(mesh.loops), dtype=np.int64)
     corner = np.arange(sizes.sum()) - np.repeat(np.cumsum(sizes) - sizes, sizes)
-    faces[np.repeat(starts, sizes) + corner] = np.repeat(np.arange(len(sizes)), sizes)
-    return faces
+    return np.repeat(starts, sizes) + corner
 
 
 def new_mesh(name, vertices, face_indices, face_sizes):

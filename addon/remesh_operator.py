@@ -1,12 +1,13 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Polycube Remesh: an all-quad copy of the object from its polycube, irregular
-vertices only at the polycube's corners."""
+vertices only at the polycube's corners; materials, smooth shading and UV maps
+carried over from the surface under it."""
 
 import bpy
 import numpy as np
 
 from . import polycube_native
-from .mesh_arrays import new_mesh
+from .mesh_arrays import corner_loops, new_mesh
 from .polycube_shape import poll_polycube, polycube_of
 from .report import failure
 from .subdivide import carry_face_flags
@@ -18,6 +19,24 @@ def mesh_area(mesh):
     areas = np.empty(len(mesh.polygons), dtype=np.float64)
     mesh.polygons.foreach_get("area", areas)
     return float(areas.sum())
+
+
+def _carry_uv_maps(source, target, result):
+    """Each UV map of the source, interpolated at every new vertex from the input
+    face corners it lies between (a quad across a UV seam takes one side's UVs)."""
+    loops = corner_loops(source)
+    corners, weights = np.asarray(result["vertex_corners"]), np.asarray(result["vertex_weights"])
+    for layer in source.uv_layers:
+        flat = np.empty(2 * len(source.loops), dtype=np.float32)
+        layer.data.foreach_get("uv", flat)
+        per_corner = flat.reshape(-1, 2)[loops]
+        per_vertex = np.einsum("vk,vkd->vd", weights, per_corner[corners])
+        new = target.uv_layers.new(name=layer.name)
+        if new is None:
+            break
+        new.data.foreach_set("uv", per_vertex[np.asarray(result["face_indices"])].astype(np.float32).ravel())
+        if layer.active:
+            target.uv_layers.active = new
 
 
 class OBJECT_OT_polycube_remesh(bpy.types.Operator):
@@ -64,6 +83,7 @@ class OBJECT_OT_polycube_remesh(bpy.types.Operator):
     def _new_object(self, context, obj, result):
         data = new_mesh(obj.name + REMESH_SUFFIX, result["vertices"], result["face_indices"], result["face_sizes"])
         carry_face_flags(obj.data, data, np.asarray(result["source_face"]))
+        _carry_uv_maps(obj.data, data, result)
         copy = bpy.data.objects.new(data.name, data)
         for collection in obj.users_collection:
             collection.objects.link(copy)

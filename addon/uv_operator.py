@@ -5,6 +5,7 @@ import bpy
 import numpy as np
 
 from . import polycube_native
+from .mesh_arrays import corner_loops
 from .polycube_shape import poll_polycube, polycube_of
 from .report import failure
 
@@ -17,14 +18,8 @@ def write_uv_map(mesh, uvs, name=UV_MAP_NAME):
     layer = mesh.uv_layers.get(name) or mesh.uv_layers.new(name=name)
     if layer is None:
         raise ValueError("the mesh has as many UV maps as Blender allows; remove one")
-    sizes = np.empty(len(mesh.polygons), dtype=np.int32)
-    mesh.polygons.foreach_get("loop_total", sizes)
-    starts = np.empty(len(mesh.polygons), dtype=np.int32)
-    mesh.polygons.foreach_get("loop_start", starts)
-    corner = np.arange(sizes.sum()) - np.repeat(np.cumsum(sizes) - sizes, sizes)
-    loops = np.repeat(starts, sizes) + corner
     per_loop = np.empty((len(mesh.loops), 2), dtype=np.float32)
-    per_loop[loops] = uvs
+    per_loop[corner_loops(mesh)] = uvs
     layer.data.foreach_set("uv", per_loop.ravel())
     mesh.uv_layers.active = layer
     return layer

@@ -292,6 +292,12 @@ py::dict quad_remesh_py(const DoubleArray& vertices, const IntArray& face_indice
   out["face_sizes"] = to_int_array(std::vector<int>(remesh.mesh.faces.count(), 4));
   out["source_face"] = to_int_array(remesh.source_face);
   out["label"] = to_int_array(remesh.label);
+  py::array_t<int> corners({remesh.vertex_corners.rows(), Eigen::Index{3}});
+  std::memcpy(corners.mutable_data(), remesh.vertex_corners.data(), sizeof(int) * remesh.vertex_corners.size());
+  py::array_t<double> weights({remesh.vertex_weights.rows(), Eigen::Index{3}});
+  std::memcpy(weights.mutable_data(), remesh.vertex_weights.data(), sizeof(double) * remesh.vertex_weights.size());
+  out["vertex_corners"] = corners;
+  out["vertex_weights"] = weights;
   out["irregular_vertices"] = remesh.irregular_vertices;
   out["open_edges"] = remesh.open_edges;
   out["grid_spacing"] = remesh.grid_spacing;
@@ -387,6 +393,8 @@ means of each triangle's singular value ratio and of its area ratio max(r, 1/r);
         R"(An all-quad mesh of the input from its exact polycube, quads of about edge_length (input units).
 
 Returns {"vertices", "face_indices", "face_sizes" (all 4), "source_face" (input face under each
-quad), "label", "irregular_vertices", "open_edges", "grid_spacing"}. Raises ValueError with one
+quad), "label", "vertex_corners" and "vertex_weights" (each vertex as weights of three input face
+corners, indices into face_indices: carries per-corner data such as UVs), "irregular_vertices",
+"open_edges", "grid_spacing"}. Raises ValueError with one
 sentence: not an exact polycube, a folded one, an edge length larger than the model, ...)");
 }

@@ -10,6 +10,7 @@
 
 #include "labels/axis.h"
 #include "mesh/components.h"
+#include "use/corner_of.h"
 #include "use/polycube_surface.h"
 #include "use/quantise_planes.h"
 
@@ -190,6 +191,8 @@ QuadRemesh quad_remesh(const PolygonMesh& input, const Vertices& polycube, const
 
   // Every grid vertex back onto the input: the same barycentric coordinates on the input triangle.
   out.mesh.vertices.resize(static_cast<Eigen::Index>(vertex_keys.size()), 3);
+  out.vertex_corners.resize(out.mesh.vertices.rows(), 3);
+  out.vertex_weights.resize(out.mesh.vertices.rows(), 3);
   for (size_t v = 0; v < vertex_keys.size(); ++v) {
     auto found = placement.find(vertex_keys[v]);
     Placement p;
@@ -205,6 +208,9 @@ QuadRemesh quad_remesh(const PolygonMesh& input, const Vertices& polycube, const
     }
     const Eigen::Vector3d w = p.weights.cwiseMax(0.0) / p.weights.cwiseMax(0.0).sum();
     const int t = flats[p.flat].triangle;
+    const int face = surface.triangulation.face_of_triangle[t];
+    for (int k = 0; k < 3; ++k) out.vertex_corners(v, k) = corner_of(input.faces, face, triangles(t, k));
+    out.vertex_weights.row(v) = w.transpose();
     out.mesh.vertices.row(v) = w[0] * input.vertices.row(triangles(t, 0)) +
                                w[1] * input.vertices.row(triangles(t, 1)) +
                                w[2] * input.vertices.row(triangles(t, 2));

@@ -24,6 +24,10 @@ struct QuadRemesh {
   PolygonMesh mesh;               // quads, outward like the polycube's faces
   std::vector<int> source_face;   // per quad: the input face under its centre (for materials)
   std::vector<int> label;         // per quad: its polycube axis 0..5
+  // Where each vertex lies on the input: three corners of one input face (indices into
+  // faces.indices) and weights summing to 1, to carry per-corner data (UVs) over.
+  Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> vertex_corners;
+  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> vertex_weights;
   double grid_spacing = 0.0;      // h in polycube units (edge_length times the polycube's scale)
   int irregular_vertices = 0;     // valence other than 4 (boundary vertices: other than 3)
   int open_edges = 0;             // edges with one quad (only where the input is open)

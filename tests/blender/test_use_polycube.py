@@ -101,6 +101,22 @@ def test_remesh_makes_a_new_all_quad_object_on_the_surface():
     assert quads.matrix_world == fandisk.matrix_world
 
 
+def test_remesh_carries_uv_maps():
+    sphere = labelled_sphere()  # Blender's UV sphere comes with its UV map "UVMap": u around, v up
+    assert deform(sphere, iterations=200) == {'FINISHED'}
+    assert bpy.ops.object.polycube_remesh(mode='FACES', target_faces=2000) == {'FINISHED'}
+    quads = bpy.context.active_object
+    assert quads.data.uv_layers.active.name == "UVMap"
+    flat = np.empty(2 * len(quads.data.loops), dtype=np.float32)
+    quads.data.uv_layers["UVMap"].data.foreach_get("uv", flat)
+    uv = flat.reshape(-1, 2)
+    loops = np.empty(len(quads.data.loops), dtype=np.int32)
+    quads.data.loops.foreach_get("vertex_index", loops)
+    z = vertices(quads)[loops, 2]
+    # The sphere's v runs from the south pole (0) to the north pole (1): v follows the height.
+    assert np.corrcoef(uv[:, 1], z)[0, 1] > 0.99
+
+
 def test_remesh_target_edge_length():
     fandisk = _deformed_fandisk()
     assert bpy.ops.object.polycube_remesh(mode='EDGE_LENGTH', edge_length=0.04) == {'FINISHED'}
