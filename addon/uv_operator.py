@@ -10,6 +10,7 @@ from .polycube_shape import poll_polycube, polycube_of
 from .report import failure
 
 UV_MAP_NAME = "Polycube"
+MERGE_SLACK = 0.01  # the rise of angle and area distortion a merge may cost
 
 
 def write_uv_map(mesh, uvs, name=UV_MAP_NAME):
@@ -41,6 +42,11 @@ class OBJECT_OT_polycube_uv(bpy.types.Operator):
         description="Re-solve each island to keep the mesh's angles (least-squares conformal); "
                     "the polycube still decides islands and seams")
 
+    merge: bpy.props.BoolProperty(
+        name="Merge Islands", default=False,
+        description="Conformal, and neighbouring islands merged where they unfold together "
+                    "(angle and area distortion each rise by at most 0.01): fewer islands, shorter seams")
+
     @classmethod
     def poll(cls, context):
         return poll_polycube(cls, context)
@@ -50,7 +56,8 @@ class OBJECT_OT_polycube_uv(bpy.types.Operator):
         try:
             mesh, positions, labels = polycube_of(obj)
             result = polycube_native.polycube_uv(mesh.vertices, mesh.face_indices, mesh.face_sizes, positions,
-                                                 labels, padding=self.padding, relax=self.relax)
+                                                 labels, padding=self.padding, relax=self.relax,
+                                                 merge=MERGE_SLACK if self.merge else -1.0)
             write_uv_map(obj.data, result["uvs"])
         except ValueError as error:
             self.report({'ERROR'}, failure(obj.name, "given polycube UVs", error))

@@ -233,14 +233,15 @@ Vertices polycube_positions(const DoubleArray& polycube, const PolygonMesh& mesh
 
 py::dict polycube_uv_py(const DoubleArray& vertices, const IntArray& face_indices, const IntArray& face_sizes,
                         const DoubleArray& polycube, const std::optional<IntArray>& labels, bool pack,
-                        double padding, bool relax) {
+                        double padding, bool relax, double merge) {
   const PolygonMesh mesh = to_mesh(vertices, face_indices, face_sizes);
   const Vertices positions = polycube_positions(polycube, mesh);
   const std::vector<int> face_labels = labels ? to_ints(*labels, "labels") : std::vector<int>{};
   PolycubeUvOptions options;
   options.pack = pack;
   options.padding = padding;
-  options.relax = relax;
+  options.relax = relax || merge >= 0.0;
+  options.merge_slack = merge;
   PolycubeUv uv;
   {
     py::gil_scoped_release release;
@@ -374,6 +375,7 @@ made for the other winding; flip_labels fixes them).)");
   m.def("polycube_uv", &polycube_uv_py, py::arg("vertices"), py::arg("face_indices"), py::arg("face_sizes"),
         py::arg("polycube"), py::arg("labels") = py::none(), py::kw_only(), py::arg("pack") = true,
         py::arg("padding") = PolycubeUvOptions{}.padding, py::arg("relax") = false,
+        py::arg("merge") = -1.0,
         R"(A UV map from the mesh's polycube: one island per chart, the polycube's positions in the chart's plane.
 
 polycube: (n, 3) positions of the same vertices on the polycube (the last shape key of a run);
@@ -381,6 +383,8 @@ labels: the labels the solver ended with, or None to read them from the polycube
 Returns {"uvs" (corners, 2) in face_indices order, "island_of_face", "label_of_face", "islands"}.
 pack: islands packed without overlap into the unit square, one texel density.
 relax: each island re-solved to keep the mesh's angles (least-squares conformal), same islands and seams.
+merge: >= 0 (implies relax): neighbouring islands merged where their union unfolds as a disk with
+angle and area distortion each rising by at most this much (0.01 is a good start).
 Raises ValueError on a polycube that does not fit the mesh or is folded (flipped faces).)");
   m.def("uv_figures", &uv_figures_py, py::arg("vertices"), py::arg("face_indices"), py::arg("face_sizes"),
         py::arg("uvs"),

@@ -4,6 +4,7 @@
 
 #include "labels/charts.h"
 #include "mesh/mesh_adjacency.h"
+#include "use/merge_islands.h"
 #include "use/pack_islands.h"
 #include "use/polycube_surface.h"
 #include "use/relax_islands.h"
@@ -62,7 +63,6 @@ PolycubeUv polycube_uv(const PolygonMesh& input, const Vertices& polycube, const
   // Projection on the plane of the face's label: (u, v) along the two other
   // axes in the order that keeps the winding (e_b x e_c = e_a for +a, swapped for -a).
   out.uvs.resize(static_cast<Eigen::Index>(input.faces.indices.size()), 2);
-  std::vector<int> island_of_corner(input.faces.indices.size());
   for (int f = 0; f < face_count; ++f) {
     const int label = out.label_of_face[f], a = label / 2;
     const int b = (a + 1) % 3, c = (a + 2) % 3;
@@ -70,11 +70,17 @@ PolycubeUv polycube_uv(const PolygonMesh& input, const Vertices& polycube, const
     for (int k = input.faces.offsets[f]; k < input.faces.offsets[f + 1]; ++k) {
       const int vertex = input.faces.indices[k];
       out.uvs.row(k) << polycube(vertex, u), polycube(vertex, v);
-      island_of_corner[k] = out.island_of_face[f];
     }
   }
   if (options.relax) relax_islands(input, out.island_of_face, out.islands, out.uvs, surface.area_scale);
-  if (options.pack) pack_islands(out.uvs, island_of_corner, out.islands, options.padding);
+  if (options.relax && options.merge_slack >= 0.0)
+    merge_islands(input, out.island_of_face, out.islands, out.uvs, surface.area_scale, options.merge_slack);
+  if (options.pack) {
+    std::vector<int> island_of_corner(input.faces.indices.size());
+    for (int f = 0; f < face_count; ++f)
+      for (int k = input.faces.offsets[f]; k < input.faces.offsets[f + 1]; ++k) island_of_corner[k] = out.island_of_face[f];
+    pack_islands(out.uvs, island_of_corner, out.islands, options.padding);
+  }
   return out;
 }
 

@@ -17,6 +17,9 @@ struct PolycubeUvOptions {
   // Re-solve each island's inside to keep the input's angles (relax_islands.h): the
   // polycube then only decides islands and seams. Off: UVs are the polycube's positions.
   bool relax = false;
+  // With relax: merge neighbouring islands whose union unfolds as well (merge_islands.h),
+  // a merge costing at most this much angle distortion; negative: no merging.
+  double merge_slack = -1.0;
   double padding = 0.01;   // gap between packed islands, relative to the square root of their area
 };
 
@@ -24,7 +27,7 @@ struct PolycubeUv {
   CornerUvs uvs;  // per corner (faces.indices order)
   std::vector<int> island_of_face;
   std::vector<int> label_of_face;  // the label each face was projected by (the solver's final one)
-  int islands = 0;                 // = charts that carry area
+  int islands = 0;                 // = charts that carry area (fewer after merging)
 };
 
 // Inputs:

@@ -282,6 +282,10 @@ def inside_blender(argv):
         uv = native.polycube_uv(vertices, indices, sizes, positions, relax=True)
         row["seconds_uv_conformal"] = time.perf_counter() - start
         row["uv_conformal"] = native.uv_figures(vertices, indices, sizes, uv["uvs"])
+        start = time.perf_counter()
+        uv = native.polycube_uv(vertices, indices, sizes, positions, merge=0.01)
+        row["seconds_uv_merged"] = time.perf_counter() - start
+        row["uv_merged"] = native.uv_figures(vertices, indices, sizes, uv["uvs"])
         obj = new_object(name + " smart", vertices, indices, sizes)
         obj.data.uv_layers.new(name="UVMap")
         bpy.context.view_layer.objects.active = obj
@@ -324,18 +328,20 @@ def inside_blender(argv):
               f"{100 * o['valence4']:.1f} / {100 * q['valence4']:.1f} | {o['hausdorff']:.5f} / {q['hausdorff']:.5f} | "
               f"{closed(o)} / {closed(q)} | "
               f"{row['seconds_ours']:.2f} (+{row['seconds_deform']:.2f} deform) / {row['seconds_quadriflow']:.2f} |")
-    print("TABLE\nTABLE UV (ours: polycube positions / ours --relax: conformal in the same islands / Smart UV Project):\nTABLE")
+    print("TABLE\nTABLE UV (ours: polycube positions / --relax: conformal in the same islands / --merge 0.01: "
+          "conformal, islands merged / Smart UV Project):\nTABLE")
     print("TABLE | model | angle distortion | area distortion | islands | seam length | UV-collapsed area % | seconds |")
     print("TABLE |---|---|---|---|---|---|---|")
     for row in rows:
         if not row["exact"]:
             continue
-        o, c, s = row["uv_ours"], row["uv_conformal"], row["uv_smart"]
+        figures = [row[k] for k in ("uv_ours", "uv_conformal", "uv_merged", "uv_smart")]
 
         def three(key, form):
-            return " / ".join(format(f[key], form) for f in (o, c, s))
-        seconds = " / ".join(f"{row[k]:.3f}" for k in ("seconds_uv_ours", "seconds_uv_conformal", "seconds_uv_smart"))
-        collapsed = " / ".join(f"{100 * f['collapsed_area']:.2f}" for f in (o, c, s))
+            return " / ".join(format(f[key], form) for f in figures)
+        seconds = " / ".join(f"{row[k]:.3f}" for k in ("seconds_uv_ours", "seconds_uv_conformal", "seconds_uv_merged",
+                                                         "seconds_uv_smart"))
+        collapsed = " / ".join(f"{100 * f['collapsed_area']:.2f}" for f in figures)
         print(f"TABLE | {row['model']} | {three('angle_distortion', '.3f')} | {three('area_distortion', '.3f')} | "
               f"{three('islands', 'd')} | {three('seam_length', '.3g')} | {collapsed} | {seconds} |")
 

@@ -74,6 +74,9 @@ def test_conformal_uv_map_keeps_the_islands():
     plain, relaxed = figures
     assert relaxed["islands"] == plain["islands"] == 6 and relaxed["flipped"] == 0
     assert relaxed["angle_distortion"] < 1.1 < plain["angle_distortion"], figures
+    assert bpy.ops.object.polycube_uv(merge=True) == {'FINISHED'}
+    merged = native.uv_figures(mesh.vertices, mesh.face_indices, mesh.face_sizes, _uvs(sphere))
+    assert merged["islands"] <= 6 and merged["flipped"] == 0 and merged["angle_distortion"] < 1.1, merged
 
 
 def test_remesh_makes_a_new_all_quad_object_on_the_surface():

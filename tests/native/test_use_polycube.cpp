@@ -203,6 +203,24 @@ TEST(PolycubeUv, RelaxedIslandsKeepTheAnglesAndGiveCollapsedFacesArea) {
   EXPECT_LT(after.area_distortion, before.area_distortion);
 }
 
+TEST(PolycubeUv, MergedIslandsUnfoldWithoutDistortionOnADevelopableSurface) {
+  // The input is its own polycube: every union of faces is flat, so merges cost nothing
+  // until an island would close around a corner (a closed surface is no disk).
+  const test_meshes::LabelledMesh block = l_block();
+  PolycubeUvOptions options;
+  options.merge_slack = 0.01;
+  options.relax = true;
+  const PolycubeUv uv = polycube_uv(block.mesh, block.mesh.vertices, block.labels, options);
+  EXPECT_LT(uv.islands, 8);
+  EXPECT_GE(uv.islands, 2);
+  expect_islands_apart(uv, block.mesh.faces);
+  const UvFigures figures = uv_figures(block.mesh, uv.uvs);
+  EXPECT_EQ(figures.islands, uv.islands);
+  EXPECT_EQ(figures.flipped, 0);
+  EXPECT_LT(figures.angle_distortion, 1.01);
+  EXPECT_LT(figures.area_distortion, 1.01);
+}
+
 TEST(PolycubeUv, RefusesAFlippedPolycube) {
   const test_meshes::LabelledMesh block = l_block();
   std::vector<int> labels = block.labels;

@@ -62,6 +62,20 @@ def test_uv_command_relax_keeps_islands_and_lowers_distortion(program, fandisk):
     assert relaxed["collapsed_area"] == 0.0
 
 
+def test_uv_command_merge_gives_fewer_islands_and_shorter_seams(program, fandisk):
+    source, polycube, folder = fandisk
+    result = run(program, "uv", source, polycube, "--output", folder / "uv.obj", "--relax")
+    relaxed = json.loads(result.stdout)
+    result = run(program, "uv", source, polycube, "--output", folder / "uv.obj", "--merge", 0.01)
+    assert result.returncode == 0, result.stderr
+    merged = json.loads(result.stdout)
+    # Measured: 21 islands -> 8, seams 15.2 -> 10.4, angle distortion 1.0009 -> 1.0016.
+    assert merged["islands"] <= 10 < relaxed["islands"]
+    assert merged["seam_length"] < 0.8 * relaxed["seam_length"]
+    assert merged["flipped"] == 0 and merged["angle_distortion"] < relaxed["angle_distortion"] + 0.01
+    assert merged["area_distortion"] < relaxed["area_distortion"] + 0.02
+
+
 def test_polycube_uv_islands_are_the_charts(native, fandisk):
     source, polycube, _ = fandisk
     vertices, indices, sizes = native.read_mesh(str(source))
