@@ -8,6 +8,7 @@
 #include "labels/axis.h"
 #include "mesh/check_input.h"
 #include "mesh/mesh_adjacency.h"
+#include "labels/faces_facing_away.h"
 #include "labels/repair_charts.h"
 #include "labels/squeezed_triangles.h"
 #include "labeller/straighten.h"
@@ -129,6 +130,11 @@ std::vector<int> auto_labels(const PolygonMesh& mesh, const AutoLabelOptions& op
     labels = merge_tiny_charts(adjacency, energy, areas, std::move(labels), options.repair_moves);
     labels = repair_charts(adjacency, energy, std::move(labels), options.repair_moves);
     labels = merge_tiny_charts(adjacency, energy, areas, std::move(labels), options.repair_moves);
+    // Faces facing away from their labels, then what relabelling them broke.
+    if (relabel_faces_facing_away(mesh, face_neighbours(adjacency, mesh.faces.count()), labels) > 0) {
+      labels = repair_charts(adjacency, energy, std::move(labels), options.repair_moves);
+      labels = merge_tiny_charts(adjacency, energy, areas, std::move(labels), options.repair_moves);
+    }
     // Squeezed triangles, then what relabelling them broke; a few rounds,
     // as each repair can leave new teeth. Kept only when the polycube
     // conditions hold as well as before.
