@@ -14,15 +14,18 @@ bl_info = {
     "location": "View3D > Sidebar > Polycube",
     "description": "Deform meshes into their polycube, a shape key per iteration",
     "category": "Mesh",
+    "doc_url": "https://github.com/polycube/polycube#blender-add-on",
+    "tracker_url": "https://github.com/polycube/polycube/issues",
 }
 
 import bpy
 
-from . import label_cache, scrub, settings
+from . import label_cache, menus, panel, scrub, settings
+from .label_assign import (
+    MESH_OT_polycube_assign_label, VIEW3D_MT_polycube_assign_label, VIEW3D_MT_polycube_label_pie)
 from .label_operators import (
     OBJECT_OT_polycube_auto_label, OBJECT_OT_polycube_label_colours, OBJECT_OT_polycube_validate_labels)
 from .operators import OBJECT_OT_polycube_deform
-from .panel import VIEW3D_PT_polycube
 from .preferences import PolycubePreferences
 from .remesh_operator import OBJECT_OT_polycube_remesh
 from .unconverged import OBJECT_OT_polycube_select_unconverged
@@ -38,8 +41,12 @@ _classes = (
     OBJECT_OT_polycube_select_unconverged,
     OBJECT_OT_polycube_uv,
     OBJECT_OT_polycube_remesh,
-    VIEW3D_PT_polycube,
-)
+    MESH_OT_polycube_assign_label,
+    VIEW3D_MT_polycube_assign_label,
+    VIEW3D_MT_polycube_label_pie,
+    menus.VIEW3D_MT_polycube_object,
+    menus.VIEW3D_MT_polycube_labels,
+) + panel.CLASSES
 
 
 def register():
@@ -48,9 +55,11 @@ def register():
     settings.register()
     scrub.register()
     label_cache.register()
+    menus.register()
 
 
 def unregister():
+    menus.unregister()
     label_cache.unregister()
     scrub.unregister()
     settings.unregister()

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""The label operators: Auto Label, Validate Labels and Label Colours (issue 4).
+"""The label operators: Auto Label, Validate Labels and Label Colors.
 
 Labels are read and written as labels.py says (DESIGN.md section 3); every
 operator is undoable and reports in one sentence per object.
@@ -126,14 +126,14 @@ of every violation in Edit Mode"""
 
 
 class OBJECT_OT_polycube_label_colours(bpy.types.Operator):
-    """Show the selected meshes' labels as face colours (the polycube_label_colour attribute), \
+    """Show the selected meshes' labels as face colors (the polycube_label_colour attribute), \
 or hide them again"""
     bl_idname = "object.polycube_label_colours"
-    bl_label = "Label Colours"
+    bl_label = "Label Colors"
     bl_options = {'REGISTER', 'UNDO'}
 
     show: BoolProperty(
-        name="Show", description="Show (or refresh) the label colours; off: remove them", default=True)
+        name="Show", description="Show (or refresh) the label colors; off: remove them", default=True)
 
     @classmethod
     def poll(cls, context):

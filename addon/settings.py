@@ -30,10 +30,10 @@ class DeformSettings(LabelSettings):
     label_source: EnumProperty(
         name="Labels", description="Where each face's label comes from",
         items=(
-            ('STORED', "Face Maps / Attribute",
+            ('STORED', "Stored Labels",
              "The object's face maps or polycube_label attribute; unlabelled faces take their nearest axis"),
-            ('AUTO', "Automatic", "Label every face automatically, ignoring the stored labels"),
-            ('AUTO_UNLABELLED', "Automatic Where Unlabelled",
+            ('AUTO', "Automatic Labels", "Label every face automatically, ignoring the stored labels"),
+            ('AUTO_UNLABELLED', "Auto Where Unlabelled",
              "Keep the stored labels and label the other faces automatically"),
         ),
         default='STORED')
@@ -79,24 +79,30 @@ class DeformSettings(LabelSettings):
         default='BILINEAR')
 
     def draw_settings(self, layout):
-        layout.use_property_split = True
+        # Values and check boxes get the whole width: the sidebar is narrow.
         layout.use_property_decorate = False
-        layout.prop(self, "label_source")
+        layout.prop(self, "label_source", text="", icon='FACESEL')
+        column = layout.column()
+        column.use_property_split = True
         if self.label_source != 'STORED':
-            layout.prop(self, "compactness")
-        layout.prop(self, "iterations")
-        layout.prop(self, "tolerance")
-        layout.prop(self, "variant")
-        layout.prop(self, "keep")
+            column.prop(self, "compactness")
+        column.prop(self, "iterations")
+        column.prop(self, "tolerance")
+        column.prop(self, "variant")
+        column.prop(self, "keep")
         if self.keep == 'EVERY':
-            layout.prop(self, "keep_every")
+            column.prop(self, "keep_every")
         layout.prop(self, "animate")
         if self.animate:
-            layout.prop(self, "start_frame")
+            column = layout.column()
+            column.use_property_split = True
+            column.prop(self, "start_frame")
         layout.prop(self, "subdivide")
         if self.subdivide:
-            layout.prop(self, "subdivide_levels")
-            layout.prop(self, "subdivide_scheme")
+            column = layout.column()
+            column.use_property_split = True
+            column.prop(self, "subdivide_levels")
+            column.prop(self, "subdivide_scheme")
 
     def copy_settings_to(self, target):
         for name in _setting_names(DeformSettings):

@@ -16,6 +16,7 @@ import sys
 import time
 import traceback
 
+import bmesh
 import bpy
 import numpy as np
 
@@ -27,18 +28,28 @@ polycube = enable_addon()
 SCREENSHOT = os.path.join(ROOT, "build", "ui", "polycube-panel.png")
 SCRIPT = os.path.basename(__file__)
 
-# What the panel's draw() saw, recorded by wrapping it (the add-on has no test hooks).
-panel_draws = []
-_draw = bpy.types.VIEW3D_PT_polycube.draw
+def _record_draws(cls, record):
+    """Wrap cls.draw (the add-on has no test hooks): after each draw that did not
+    raise, append record(context) to the returned list."""
+    draws, draw = [], cls.draw
+
+    def recording_draw(self, context):
+        draw(self, context)  # an exception here means no record: it failed to draw
+        draws.append(record(context))
+
+    cls.draw = recording_draw
+    return draws
 
 
-def _recording_draw(self, context):
-    _draw(self, context)  # an exception here means no record: the panel failed to draw
+def _object_and_report(context):
     obj = context.active_object
-    panel_draws.append((obj.name if obj else None, obj is not None and report(obj) is not None))
+    return obj.name if obj else None, obj is not None and report(obj) is not None
 
 
-bpy.types.VIEW3D_PT_polycube.draw = _recording_draw
+panel_draws = _record_draws(bpy.types.VIEW3D_PT_polycube, _object_and_report)
+label_draws = _record_draws(bpy.types.VIEW3D_PT_polycube_labels, lambda context: context.mode)
+pie_draws = _record_draws(bpy.types.VIEW3D_MT_polycube_label_pie, lambda context: context.mode)
+PIE_SCREENSHOT = os.path.join(ROOT, "build", "ui", "polycube-edit-mode-pie.png")
 
 
 def _view3d():
@@ -66,12 +77,13 @@ def _redraw():
         area.tag_redraw()
 
 
-def test_sidebar_tab_draws_the_panel():
+def _open_polycube_tab():
+    """Show the sidebar on the Polycube tab, as a user does (a no-op once open)."""
     window, area, _, sidebar = _view3d()
-    window.event_simulate(type='ESC', value='PRESS')  # close the splash screen
-    window.event_simulate(type='ESC', value='RELEASE')
+    if not panel_draws:
+        window.event_simulate(type='ESC', value='PRESS')  # close the splash screen
+        window.event_simulate(type='ESC', value='RELEASE')
     area.spaces.active.show_region_ui = True
-    labelled_sphere("Panel sphere")
     yield 0.5
     for _ in range(10):  # Item, Tool, View, ... : wheel over the tabs to reach Polycube
         if panel_draws:
@@ -82,6 +94,11 @@ def test_sidebar_tab_draws_the_panel():
         window.event_simulate(type='WHEELDOWNMOUSE', value='PRESS', x=x, y=y, ctrl=True)
         yield 0.3
     assert panel_draws, "the Polycube panel never drew"
+
+
+def test_sidebar_tab_draws_the_panel():
+    labelled_sphere("Panel sphere")
+    yield from _open_polycube_tab()
     assert panel_draws[-1][0] == "Panel sphere"
 
 
@@ -169,9 +186,71 @@ def test_panel_shows_the_last_run_and_screenshot():
     assert sphere.polycube_scrub == 1.0
 
 
+def _screenshot(path):
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    window = _view3d()[0]
+    with bpy.context.temp_override(window=window, screen=window.screen):
+        bpy.ops.screen.screenshot(filepath=path)
+    assert os.path.getsize(path) > 10000
+
+
+def test_edit_mode_panel_and_label_pie():
+    sphere = labelled_sphere("Edited sphere")
+    yield from _open_polycube_tab()
+    for obj in bpy.context.scene.objects:
+        obj.hide_set(obj.type == 'MESH' and obj != sphere)
+    select_only(sphere)
+    with _override():
+        assert bpy.ops.object.polycube_auto_label() == {'FINISHED'}
+        assert bpy.ops.object.polycube_label_colours() == {'FINISHED'}
+        bpy.ops.object.mode_set(mode='EDIT')
+        bpy.ops.mesh.select_all(action='DESELECT')
+    # Touch the mesh, as a user editing it does: Edit Mode's attribute data is then empty.
+    bm = bmesh.from_edit_mesh(sphere.data)
+    bm.faces.ensure_lookup_table()
+    for face in list(bm.faces)[:40]:
+        face.select_set(True)
+    bmesh.update_edit_mesh(sphere.data)
+    label_draws.clear()
+    _redraw()
+    yield from _wait_until(lambda: 'EDIT_MESH' in label_draws, "the Labels panel in Edit Mode")
+    with _override():
+        assert bpy.ops.mesh.polycube_assign_label(label='-Z') == {'FINISHED'}
+    label_draws.clear()
+    _redraw()
+    yield from _wait_until(lambda: 'EDIT_MESH' in label_draws, "the Labels panel after assigning")
+    sphere.scale = (2.5, 2.5, 2.5)  # large in the screenshot; labels are in local axes
+    window, area, region, _ = _view3d()
+    x, y = region.x + region.width // 4, region.y + region.height // 2  # left of the sphere
+    window.event_simulate(type='MOUSEMOVE', value='NOTHING', x=x, y=y)
+    yield 0.2
+    bpy.context.preferences.view.pie_animation_timeout = 0  # drawn whole at once, for the screenshot
+    # The documented shortcut opens the pie.
+    window.event_simulate(type='LEFT_SHIFT', value='PRESS', x=x, y=y)
+    window.event_simulate(type='LEFT_ALT', value='PRESS', x=x, y=y, shift=True)
+    window.event_simulate(type='L', value='PRESS', x=x, y=y, shift=True, alt=True)
+    yield from _wait_until(lambda: pie_draws, "the label pie menu after Shift Alt L")
+    # Lean towards +X, as a user choosing it does (the pie redraws with it lit).
+    window.event_simulate(type='MOUSEMOVE', value='NOTHING', x=x + 40, y=y, shift=True, alt=True)
+    yield 1.0
+    _screenshot(PIE_SCREENSHOT)
+    # Esc closes the pie without choosing; only then let go of the keys.
+    window.event_simulate(type='ESC', value='PRESS', x=x, y=y)
+    window.event_simulate(type='ESC', value='RELEASE', x=x, y=y)
+    yield 0.2
+    for key in ('L', 'LEFT_ALT', 'LEFT_SHIFT'):
+        window.event_simulate(type=key, value='RELEASE', x=x, y=y)
+    yield 0.2
+    with _override():
+        bpy.ops.object.mode_set(mode='OBJECT')
+    values = np.empty(len(sphere.data.polygons), dtype=np.int32)
+    sphere.data.attributes["polycube_label"].data.foreach_get("value", values)
+    assert (values[:40] == 5).all()
+
+
 TESTS = [test_sidebar_tab_draws_the_panel, test_button_run_is_modal_and_pushes_its_undo_step,
          test_long_run_keeps_blender_responsive_and_esc_keeps_iterations,
-         test_panel_shows_the_last_run_and_screenshot]
+         test_panel_shows_the_last_run_and_screenshot, test_edit_mode_panel_and_label_pie]
 wanted = os.environ.get("POLYCUBE_TEST_FILTER", "")
 TESTS = [test for test in TESTS if wanted in f"{SCRIPT}::{test.__name__}"]
 _state = {"index": 0, "steps": None, "failed": 0}
