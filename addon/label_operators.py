@@ -11,6 +11,7 @@ from bpy.props import BoolProperty
 
 from .face_selection import poll_mesh_to_select_in, select_faces_in_edit_mode
 from .label_colours import colour_faces, colours_shown, hide_colours
+from .label_source import mark_automatic
 from .labels import read_labels, write_face_maps, write_label_attribute
 from .mesh_arrays import read_mesh_arrays
 from .polycube_native import auto_labels
@@ -68,6 +69,7 @@ in Blender 3.x, face maps +X ... -Z"""
                 self.report({'WARNING'}, failure(obj.name, "labelled", error))
                 continue
             write_label_attribute(obj.data, labels)
+            mark_automatic(obj.data, labels)
             in_user_maps = write_face_maps(obj, labels) if hasattr(obj, "face_maps") else 0
             if colours_shown(obj.data):
                 colour_faces(obj.data, labels)

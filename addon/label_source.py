@@ -6,8 +6,22 @@ import numpy as np
 
 from .labels import Labels, read_labels
 from .polycube_native import auto_labels
+from .validation import labels_digest
 
 AUTOMATIC = "automatic"
+# Mesh property: the digest of the labels Auto Label wrote last, so that a run can
+# tell labels from Auto Label (advice differs) from the user's.
+AUTO_LABELS_PROPERTY = "polycube_auto_labels"
+
+
+def mark_automatic(mesh, values):
+    mesh[AUTO_LABELS_PROPERTY] = labels_digest(values)
+
+
+def is_automatic(obj, labels):
+    """Whether the labels of a run came from the labeller (this run's or Auto Label's)."""
+    return labels.source.startswith(AUTOMATIC) or "automatic where unlabelled" in labels.source or \
+        obj.data.get(AUTO_LABELS_PROPERTY) == labels_digest(labels.values)
 
 
 def labels_for_run(obj, mesh, source, compactness):

@@ -118,7 +118,7 @@ class OBJECT_OT_polycube_deform(DeformSettings, bpy.types.Operator):
         self._run_error = None
         self._run.live_preview = preferences.live_preview(context)
         args, kwargs = self._run.solver_call()
-        self._thread = SolverThread(args, kwargs, self._run.settings.keeps)
+        self._thread = SolverThread(args, kwargs, self._run.settings.keeps, self._run.watch)
         self._thread.start()
 
     def _pump(self, context):
@@ -128,9 +128,9 @@ class OBJECT_OT_polycube_deform(DeformSettings, bpy.types.Operator):
             kind = message[0]
             if kind == "iteration":
                 if self._run_error is None:
-                    _, iteration, positions, figures = message
+                    _, iteration, positions, figures, moved = message
                     try:
-                        self._run.add_iteration(iteration, positions, figures)
+                        self._run.add_iteration(iteration, positions, figures, moved)
                     except (ValueError, RuntimeError) as error:
                         # Keep draining: the thread may wait for the queue to empty.
                         self._run_error = error
@@ -227,4 +227,5 @@ def _summary(report):
                f"{report['flipped_faces']} flipped faces, "
                f"{len(report['kept_iterations'])} shape keys.")
     hint = advice(report)
-    return f"{summary} Not a polycube yet: {'; '.join(hint).lower()}." if hint else summary
+    return f"{summary} Not a polycube yet: {'; '.join(line[0].lower() + line[1:] for line in hint)}." \
+        if hint else summary

@@ -42,8 +42,9 @@ class DeformSettings(LabelSettings):
         default=100, min=1, soft_max=1000)
     tolerance: FloatProperty(
         name="Tolerance",
-        description="Stop once every face's normal is within this many degrees of its label's axis",
-        default=0.5, min=1e-4, soft_max=10.0, precision=3)
+        description="Stop once every face's normal is within this many degrees of its label's axis "
+                    "(0: run every iteration)",
+        default=0.5, min=0.0, soft_max=10.0, precision=3)
     variant: EnumProperty(
         name="Solver", description="How the solver steps towards the polycube",
         items=variant_items(), default=DEFAULT_VARIANT.upper())

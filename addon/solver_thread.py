@@ -18,14 +18,16 @@ _IN_FLIGHT = 4
 
 class SolverThread(threading.Thread):
     """Runs polycube_native.deform; messages, in order, from `messages()`:
-    ("iteration", k, positions or None, figures) ... then ("done", result, seconds)
+    ("iteration", k, positions or None, figures, moved) ... then ("done", result, seconds)
     or ("error", exception)."""
 
-    def __init__(self, args, kwargs, keeps):
+    def __init__(self, args, kwargs, keeps, watch):
+        """`keeps(iteration)`: whether the iteration becomes a shape key; `watch`: a
+        ProgressWatch, owned by this thread until it ends."""
         super().__init__(name="polycube solver", daemon=True)
         self._queue = queue.Queue()
         self._slots = threading.Semaphore(_IN_FLIGHT)
-        self._args, self._kwargs, self._keeps = args, kwargs, keeps
+        self._args, self._kwargs, self._keeps, self._watch = args, kwargs, keeps, watch
         self._stop_requested = threading.Event()
 
     def request_stop(self):
@@ -34,12 +36,13 @@ class SolverThread(threading.Thread):
 
     def run(self):
         def on_iteration(iteration, positions, figures):
-            # Only kept iterations carry positions, and only a few at a time.
-            kept = positions if self._keeps(iteration) else None
+            moved = self._watch.update(iteration, positions)
+            # Only kept iterations that moved carry positions, and only a few at a time.
+            kept = positions if moved and self._keeps(iteration) else None
             if kept is not None:
                 self._slots.acquire()
-            self._queue.put(("iteration", iteration, kept, figures))
-            return not self._stop_requested.is_set()
+            self._queue.put(("iteration", iteration, kept, figures, moved))
+            return not self._stop_requested.is_set() and not self._watch.stalled
 
         start = perf_counter()
         try:
