@@ -63,6 +63,10 @@ class DeformSettings(LabelSettings):
         description="Keyframe the shape keys: frame start + k shows iteration k", default=False)
     start_frame: IntProperty(
         name="Start Frame", description="Frame that shows the input mesh", default=1)
+    fit_frame_range: BoolProperty(
+        name="Fit Frame Range",
+        description="Set the scene's start and end frames to the animation's (otherwise they stay as they are)",
+        default=False)
     subdivide: BoolProperty(
         name="Subdivide Before",
         description="Deform a subdivided copy, the object '<name> polycube', instead of the mesh itself",
@@ -98,6 +102,7 @@ class DeformSettings(LabelSettings):
             column = layout.column()
             column.use_property_split = True
             column.prop(self, "start_frame")
+            layout.prop(self, "fit_frame_range")
         layout.prop(self, "subdivide")
         if self.subdivide:
             column = layout.column()
