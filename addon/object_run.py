@@ -17,6 +17,7 @@ from .mesh_arrays import read_mesh_arrays
 from .polycube_native import LABEL_NAMES
 from .progress_watch import STILL_ITERATIONS, ProgressWatch
 from .report import store_labels_used, store_report
+from .settings import label_options
 from .subdivide import remove_copy, subdivided_copy
 
 
@@ -27,7 +28,7 @@ class ObjectRun:
         start = perf_counter()
         self.settings = settings
         self.mesh = read_mesh_arrays(obj.data)
-        self.labels = labels_for_run(obj, self.mesh, settings.label_source, settings.compactness)
+        self.labels = labels_for_run(obj, self.mesh, settings.label_source, label_options(settings))
         self.labels_automatic = is_automatic(obj, self.labels)
         self.source_name = None  # the object a subdivided copy was made from
         if settings.subdivide:

@@ -17,9 +17,9 @@ from .settings import DeformSettings
 from .solver_thread import SolverThread
 from .subdivide import source_object
 
-# Events that reach the rest of Blender while the solver runs: looking around only,
-# so nothing can edit, undo or delete the object that shape keys are being written to.
-_PASS_THROUGH = {
+# Events that reach the rest of Blender while the solver (or the labeller) runs:
+# looking around only, so nothing can edit, undo or delete the object being written to.
+PASS_THROUGH = {
     'MIDDLEMOUSE', 'WHEELUPMOUSE', 'WHEELDOWNMOUSE', 'WHEELINMOUSE', 'WHEELOUTMOUSE',
     'MOUSEMOVE', 'INBETWEEN_MOUSEMOVE', 'TRACKPADPAN', 'TRACKPADZOOM', 'MOUSEROTATE',
     'MOUSESMARTZOOM', 'NDOF_MOTION', 'WINDOW_DEACTIVATE', 'TIMER', 'TIMERREPORT',
@@ -89,7 +89,7 @@ class OBJECT_OT_polycube_deform(DeformSettings, bpy.types.Operator):
             return {'RUNNING_MODAL'}
         if event.type == 'TIMER' and self._pump(context):
             return self._end(context)
-        return {'PASS_THROUGH'} if event.type in _PASS_THROUGH else {'RUNNING_MODAL'}
+        return {'PASS_THROUGH'} if event.type in PASS_THROUGH else {'RUNNING_MODAL'}
 
     def cancel(self, context):
         # Blender is closing the window: let the thread go, keep what is written.

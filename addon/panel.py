@@ -17,7 +17,9 @@ from .polycube_shape import has_polycube
 from .remesh_operator import OBJECT_OT_polycube_remesh
 from .report import advice, load_report, outcome
 from .scrub import shown_iteration
+from .settings import label_options
 from .shape_keys import polycube_keys
+from .sidebar import SidebarTab
 from .unconverged import OBJECT_OT_polycube_select_unconverged, unconverged_count
 from .uv_operator import OBJECT_OT_polycube_uv
 from .validation import KIND_NAMES, load_validation
@@ -28,10 +30,7 @@ def _mesh(context):
     return obj if obj is not None and obj.type == 'MESH' else None
 
 
-class VIEW3D_PT_polycube(bpy.types.Panel):
-    bl_space_type = 'VIEW_3D'
-    bl_region_type = 'UI'
-    bl_category = "Polycube"
+class VIEW3D_PT_polycube(SidebarTab, bpy.types.Panel):
     bl_label = "Polycube"
 
     def draw(self, context):
@@ -48,10 +47,7 @@ class VIEW3D_PT_polycube(bpy.types.Panel):
             layout.label(text="Not deformed yet")
 
 
-class _SubPanel:
-    bl_space_type = 'VIEW_3D'
-    bl_region_type = 'UI'
-    bl_category = "Polycube"
+class _SubPanel(SidebarTab):
     bl_parent_id = "VIEW3D_PT_polycube"
 
     @classmethod
@@ -89,7 +85,8 @@ class VIEW3D_PT_polycube_labels(_SubPanel, bpy.types.Panel):
             draw_label_buttons(layout.column(align=True))
         row = layout.row(align=True)
         button = row.operator(OBJECT_OT_polycube_auto_label.bl_idname, icon='SHADERFX')
-        button.compactness = settings.compactness
+        for name, value in label_options(settings).items():
+            setattr(button, name, value)
         row.operator(OBJECT_OT_polycube_validate_labels.bl_idname, icon='CHECKMARK', text="Validate")
         row = layout.row(align=True)
         shown = colours_shown(obj.data)

@@ -20,10 +20,18 @@ def _setting_names(cls):
 
 
 class LabelSettings:
+    """The automatic labeller's options, each named as the native auto_labels'
+    keyword argument it is passed to (label_options)."""
     compactness: FloatProperty(
         name="Compactness",
         description="Automatic labels: larger values give fewer, rounder charts",
         default=DEFAULT_COMPACTNESS, min=0.0, soft_max=10.0, precision=2)
+
+
+def label_options(settings):
+    """The keyword arguments of polycube_native.auto_labels from any settings
+    object (operator, scene, RunSettings): every LabelSettings property."""
+    return {name: getattr(settings, name) for name in _setting_names(LabelSettings)}
 
 
 class DeformSettings(LabelSettings):

@@ -6,6 +6,7 @@ why, instead of the add-on failing to enable."""
 import bpy
 
 from . import preferences
+from .sidebar import SidebarTab
 
 
 def explain(layout):
@@ -16,10 +17,7 @@ def explain(layout):
     layout.label(text="and Linux (make package), then restart Blender.")
 
 
-class VIEW3D_PT_polycube_unavailable(bpy.types.Panel):
-    bl_space_type = 'VIEW_3D'
-    bl_region_type = 'UI'
-    bl_category = "Polycube"
+class VIEW3D_PT_polycube_unavailable(SidebarTab, bpy.types.Panel):
     bl_label = "Polycube"
 
     def draw(self, context):

@@ -13,6 +13,7 @@ seconds.
 
 import os
 import sys
+import threading
 import time
 import traceback
 
@@ -255,9 +256,46 @@ def test_edit_mode_panel_and_label_pie():
     assert (values[:40] == 5).all()
 
 
+def test_auto_label_runs_modal_and_esc_leaves_the_labels():
+    big = uv_sphere("Label sphere", segments=128, rings=64)
+    select_only(big)
+    # A labeller that works until the test lets it finish, as on a detailed model.
+    operators = polycube.label_operators
+    labeller, release = operators.automatic_labels, threading.Event()
+    operators.automatic_labels = lambda *args: (release.wait(30), labeller(*args))[1]
+    try:
+        with _override():
+            assert bpy.ops.object.polycube_auto_label('INVOKE_DEFAULT') == {'RUNNING_MODAL'}
+        for _ in range(5):  # Blender's event loop goes on while the labeller works
+            yield 0.1
+        assert "polycube_label" not in big.data.attributes
+        window = _view3d()[0]
+        window.event_simulate(type='ESC', value='PRESS')
+        window.event_simulate(type='ESC', value='RELEASE')
+        yield 0.3
+        release.set()  # the labeller ends after Esc: its result is dropped, not written
+        yield 1.0
+        assert "polycube_label" not in big.data.attributes
+    finally:
+        release.set()
+        operators.automatic_labels = labeller
+
+    small = uv_sphere("Labelled sphere")
+    select_only(small)
+    with _override():
+        assert bpy.ops.object.polycube_auto_label('INVOKE_DEFAULT') == {'RUNNING_MODAL'}
+    yield from _wait_until(lambda: "polycube_label" in small.data.attributes, "the modal Auto Label")
+    values = np.empty(len(small.data.polygons), dtype=np.int32)
+    small.data.attributes["polycube_label"].data.foreach_get("value", values)
+    mesh = polycube.mesh_arrays.read_mesh_arrays(small.data)
+    expected = polycube.polycube_native.auto_labels(mesh.vertices, mesh.face_indices, mesh.face_sizes)
+    assert values.tolist() == list(expected)
+
+
 TESTS = [test_sidebar_tab_draws_the_panel, test_button_run_is_modal_and_pushes_its_undo_step,
          test_long_run_keeps_blender_responsive_and_esc_keeps_iterations,
-         test_panel_shows_the_last_run_and_screenshot, test_edit_mode_panel_and_label_pie]
+         test_panel_shows_the_last_run_and_screenshot, test_edit_mode_panel_and_label_pie,
+         test_auto_label_runs_modal_and_esc_leaves_the_labels]
 wanted = os.environ.get("POLYCUBE_TEST_FILTER", "")
 TESTS = [test for test in TESTS if wanted in f"{SCRIPT}::{test.__name__}"]
 _state = {"index": 0, "steps": None, "failed": 0}
