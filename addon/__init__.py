@@ -14,45 +14,64 @@ bl_info = {
     "location": "View3D > Sidebar > Polycube",
     "description": "Deform meshes into their polycube, a shape key per iteration",
     "category": "Mesh",
+    "doc_url": "https://github.com/polycube/polycube#blender-add-on",
+    "tracker_url": "https://github.com/polycube/polycube/issues",
 }
 
 import bpy
 
-from . import label_cache, scrub, settings
-from .label_operators import (
-    OBJECT_OT_polycube_auto_label, OBJECT_OT_polycube_label_colours, OBJECT_OT_polycube_validate_labels)
-from .operators import OBJECT_OT_polycube_deform
-from .panel import VIEW3D_PT_polycube
-from .preferences import PolycubePreferences
-from .remesh_operator import OBJECT_OT_polycube_remesh
-from .unconverged import OBJECT_OT_polycube_select_unconverged
-from .uv_operator import OBJECT_OT_polycube_uv
+from . import preferences
 
-_classes = (
-    PolycubePreferences,
-    settings.PolycubeSceneSettings,
-    OBJECT_OT_polycube_deform,
-    OBJECT_OT_polycube_auto_label,
-    OBJECT_OT_polycube_validate_labels,
-    OBJECT_OT_polycube_label_colours,
-    OBJECT_OT_polycube_select_unconverged,
-    OBJECT_OT_polycube_uv,
-    OBJECT_OT_polycube_remesh,
-    VIEW3D_PT_polycube,
-)
+try:
+    from . import polycube_native  # noqa: F401 (the rest of the add-on imports it)
+except ImportError as error:
+    # The add-on still enables, and says why in its tab and its preferences.
+    preferences.set_native_error(str(error))
+
+if preferences.native_error() is None:
+    from . import label_cache, menus, panel, scrub, settings
+    from .label_assign import (
+        MESH_OT_polycube_assign_label, VIEW3D_MT_polycube_assign_label, VIEW3D_MT_polycube_label_pie)
+    from .label_operators import (
+        OBJECT_OT_polycube_auto_label, OBJECT_OT_polycube_label_colours, OBJECT_OT_polycube_validate_labels)
+    from .operators import OBJECT_OT_polycube_deform
+    from .remesh_operator import OBJECT_OT_polycube_remesh
+    from .unconverged import OBJECT_OT_polycube_select_unconverged
+    from .uv_operator import OBJECT_OT_polycube_uv
+
+    _classes = (
+        preferences.PolycubePreferences,
+        settings.PolycubeSceneSettings,
+        OBJECT_OT_polycube_deform,
+        OBJECT_OT_polycube_auto_label,
+        OBJECT_OT_polycube_validate_labels,
+        OBJECT_OT_polycube_label_colours,
+        OBJECT_OT_polycube_select_unconverged,
+        OBJECT_OT_polycube_uv,
+        OBJECT_OT_polycube_remesh,
+        MESH_OT_polycube_assign_label,
+        VIEW3D_MT_polycube_assign_label,
+        VIEW3D_MT_polycube_label_pie,
+        menus.VIEW3D_MT_polycube_object,
+        menus.VIEW3D_MT_polycube_labels,
+    ) + panel.CLASSES
+    _modules = (settings, scrub, label_cache, menus)  # register() in this order
+else:
+    from .unavailable import VIEW3D_PT_polycube_unavailable
+
+    _classes = (preferences.PolycubePreferences, VIEW3D_PT_polycube_unavailable)
+    _modules = ()
 
 
 def register():
     for cls in _classes:
         bpy.utils.register_class(cls)
-    settings.register()
-    scrub.register()
-    label_cache.register()
+    for module in _modules:
+        module.register()
 
 
 def unregister():
-    label_cache.unregister()
-    scrub.unregister()
-    settings.unregister()
+    for module in reversed(_modules):
+        module.unregister()
     for cls in reversed(_classes):
         bpy.utils.unregister_class(cls)

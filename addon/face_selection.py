@@ -20,8 +20,8 @@ def poll_mesh_to_select_in(cls, context, obj):
 
 
 def select_faces_in_edit_mode(context, obj, faces):
-    """Make `obj` the only selected object and enter Edit Mode, face select, with
-    `faces` (ids) selected and nothing else. Call in Object Mode."""
+    """Enter Edit Mode on `obj` alone, face select, with `faces` (ids) selected and
+    nothing else; the other selected objects stay selected. Call in Object Mode."""
     mesh = obj.data
     face_selected = np.zeros(len(mesh.polygons), dtype=bool)
     face_selected[np.asarray(faces, dtype=np.int64)] = True
@@ -34,10 +34,14 @@ def select_faces_in_edit_mode(context, obj, faces):
         selected[corners[corner_selected]] = True
         elements.foreach_set("select", selected)
     mesh.polygons.foreach_set("select", face_selected)
-    for other in context.selected_objects:
-        if other != obj:
-            other.select_set(False)
+    # Edit Mode takes in every selected mesh: enter it with `obj` alone, then give
+    # the other objects their selection back.
+    others = [other for other in context.selected_objects if other != obj]
+    for other in others:
+        other.select_set(False)
     obj.select_set(True)
     context.view_layer.objects.active = obj
     context.tool_settings.mesh_select_mode = (False, False, True)
     bpy.ops.object.mode_set(mode='EDIT')
+    for other in others:
+        other.select_set(True)

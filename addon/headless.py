@@ -100,7 +100,8 @@ def _parse(argv, native_options):
     parser.add_argument("--compactness", type=float, default=native_options.DEFAULT_COMPACTNESS,
                         help="automatic labels: larger gives fewer, rounder charts")
     parser.add_argument("--iterations", type=int, default=100)
-    parser.add_argument("--tolerance", type=float, default=0.5, help="degrees")
+    parser.add_argument("--tolerance", type=float, default=0.5,
+                        help="degrees (0: run every iteration)")
     parser.add_argument("--variant", choices=native_options.VARIANTS, default=native_options.DEFAULT_VARIANT)
     parser.add_argument("--keep", choices=("all", "every", "final"), default="all",
                         help="which iterations become shape keys")

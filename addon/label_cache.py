@@ -24,7 +24,7 @@ _summaries = {}
 def label_summary(obj):
     # Renaming a face map or an attribute triggers no depsgraph update: key on names too.
     mesh = obj.data
-    key = (obj.as_pointer(), mesh.as_pointer(), len(mesh.polygons),
+    key = (obj.as_pointer(), mesh.as_pointer(), mesh.is_editmode, len(mesh.polygons),
            tuple(face_map.name for face_map in getattr(obj, "face_maps", ())),
            tuple(attribute.name for attribute in mesh.attributes))
     summary = _summaries.get(key)
@@ -33,10 +33,16 @@ def label_summary(obj):
             labels = read_labels(obj)
             summary = LabelSummary(labels.source, *label_counts(labels.values), None,
                                    labels_digest(labels.values))
-        except ValueError as error:
+        except (ValueError, RuntimeError, ReferenceError) as error:
+            # The sidebar draws this instead of going blank.
             summary = LabelSummary(None, None, None, str(error), None)
         _summaries[key] = summary
     return summary
+
+
+def forget():
+    """Read the labels again at the next draw (an operator changed them)."""
+    _summaries.clear()
 
 
 @persistent

@@ -8,10 +8,14 @@ Three stores, strongest first:
   each face's old map index, plus one BOOLEAN face attribute per old map, named
   after it.
 Faces left at -1 are unlabelled; the solver gives them their nearest axis.
+
+In Edit Mode the mesh's attribute data is empty until Edit Mode is left: every
+store is then read through `bmesh`, which holds the faces being edited.
 """
 
 from typing import NamedTuple
 
+import bmesh
 import numpy as np
 
 from .label_names import ACCEPTED_SPELLINGS, label_from_name
@@ -30,19 +34,56 @@ NO_LABELS = "none (nearest axis)"
 
 
 def read_labels(obj):
-    """The labels of a mesh object; ValueError with one sentence when they are junk."""
+    """The labels of a mesh object (Object or Edit Mode); ValueError with one sentence
+    when they are junk."""
     mesh = obj.data
-    face_count = len(mesh.polygons)
+    faces = _FaceData(mesh)
     attribute = mesh.attributes.get(LABEL_ATTRIBUTE)
     if attribute is not None:
-        return Labels(_read_label_attribute(attribute, face_count), f"attribute {LABEL_ATTRIBUTE}")
+        return Labels(_read_label_attribute(faces, attribute), f"attribute {LABEL_ATTRIBUTE}")
     if len(getattr(obj, "face_maps", ())):
-        return Labels(_read_face_maps(obj, face_count), "face maps")
+        return Labels(_read_face_maps(obj, faces), "face maps")
     attribute = mesh.attributes.get(FACE_MAPS_ATTRIBUTE)
     if attribute is not None:
-        return Labels(_read_face_maps_attribute(mesh, attribute, face_count),
-                      f"attribute {FACE_MAPS_ATTRIBUTE}")
-    return Labels(np.full(face_count, -1, dtype=np.int32), NO_LABELS)
+        return Labels(_read_face_maps_attribute(faces, attribute), f"attribute {FACE_MAPS_ATTRIBUTE}")
+    return Labels(np.full(faces.count, -1, dtype=np.int32), NO_LABELS)
+
+
+class _FaceData:
+    """Per-face values of a mesh: from its attributes in Object Mode, from its
+    bmesh in Edit Mode."""
+
+    def __init__(self, mesh):
+        self.mesh = mesh
+        self.bmesh = bmesh.from_edit_mesh(mesh) if mesh.is_editmode else None
+        self.count = len(self.bmesh.faces) if self.bmesh is not None else len(mesh.polygons)
+
+    def values(self, name, kind):
+        """The values of the face attribute `name`, kind 'int' or 'bool'."""
+        dtype = np.int32 if kind == 'int' else bool
+        if self.bmesh is None:
+            values = np.empty(self.count, dtype=dtype)
+            self.mesh.attributes[name].data.foreach_get("value", values)
+            return values
+        layers = getattr(self.bmesh.faces.layers, kind, None)
+        layer = layers.get(name) if layers is not None else None
+        if layer is None:
+            raise ValueError(f"attribute {name} cannot be read in Edit Mode; switch to Object Mode")
+        return np.fromiter((face[layer] for face in self.bmesh.faces), dtype=dtype, count=self.count)
+
+    def face_map_indices(self):
+        """Each face's face map index (Blender 3.x), -1 = none."""
+        if self.bmesh is None:
+            if not len(self.mesh.face_maps):
+                # Face maps exist on the object but no face was ever assigned to one.
+                return np.full(self.count, -1, dtype=np.int32)
+            values = np.empty(self.count, dtype=np.int32)
+            self.mesh.face_maps[0].data.foreach_get("value", values)
+            return values
+        layer = self.bmesh.faces.layers.face_map.active
+        if layer is None:
+            return np.full(self.count, -1, dtype=np.int32)
+        return np.fromiter((face[layer] for face in self.bmesh.faces), dtype=np.int32, count=self.count)
 
 
 def label_counts(values):
@@ -91,18 +132,16 @@ def write_face_maps(obj, values):
     return int(stays.sum())
 
 
-def _read_int_face_attribute(attribute, face_count):
+def _read_int_face_attribute(faces, attribute):
     if attribute.domain != 'FACE' or attribute.data_type != 'INT':
         raise ValueError(
             f"attribute {attribute.name} must be an integer face attribute, "
             f"not {attribute.data_type} on {attribute.domain}")
-    values = np.empty(face_count, dtype=np.int32)
-    attribute.data.foreach_get("value", values)
-    return values
+    return faces.values(attribute.name, 'int')
 
 
-def _read_label_attribute(attribute, face_count):
-    values = _read_int_face_attribute(attribute, face_count)
+def _read_label_attribute(faces, attribute):
+    values = _read_int_face_attribute(faces, attribute)
     junk = (values < -1) | (values >= len(LABEL_NAMES))
     if junk.any():
         shown = ", ".join(str(v) for v in np.unique(values[junk])[:5])
@@ -135,23 +174,17 @@ def _labels_from_map_indices(map_indices, map_names):
     return table[np.where(in_map, map_indices, len(map_names))]
 
 
-def _read_face_maps(obj, face_count):
-    mesh = obj.data
-    if not len(mesh.face_maps):
-        # Face maps exist on the object but no face was ever assigned to one.
-        return np.full(face_count, -1, dtype=np.int32)
-    map_indices = np.empty(face_count, dtype=np.int32)
-    mesh.face_maps[0].data.foreach_get("value", map_indices)
-    return _labels_from_map_indices(map_indices, [face_map.name for face_map in obj.face_maps])
+def _read_face_maps(obj, faces):
+    return _labels_from_map_indices(faces.face_map_indices(), [face_map.name for face_map in obj.face_maps])
 
 
-def _read_face_maps_attribute(mesh, attribute, face_count):
-    map_indices = _read_int_face_attribute(attribute, face_count)
-    map_count = int(map_indices.max()) + 1 if face_count else 0
-    return _labels_from_map_indices(map_indices, _face_map_names(mesh, map_indices, map_count))
+def _read_face_maps_attribute(faces, attribute):
+    map_indices = _read_int_face_attribute(faces, attribute)
+    map_count = int(map_indices.max()) + 1 if faces.count else 0
+    return _labels_from_map_indices(map_indices, _face_map_names(faces, map_indices, map_count))
 
 
-def _face_map_names(mesh, map_indices, map_count):
+def _face_map_names(faces, map_indices, map_count):
     """Name each old face map after the boolean face attribute that matches its faces.
 
     Blender 4.0 keeps no index-to-name table, so match by content: map i is named
@@ -160,12 +193,10 @@ def _face_map_names(mesh, map_indices, map_count):
     Blender's own booleans such as sharp_face may coincide with a map).
     """
     candidates = []
-    for attribute in mesh.attributes:
+    for attribute in faces.mesh.attributes:
         if (attribute.domain == 'FACE' and attribute.data_type == 'BOOLEAN'
                 and not attribute.name.startswith(".")):
-            flags = np.empty(len(map_indices), dtype=bool)
-            attribute.data.foreach_get("value", flags)
-            candidates.append((attribute.name, flags))
+            candidates.append((attribute.name, faces.values(attribute.name, 'bool')))
     names = []
     for index in range(map_count):
         members = map_indices == index

@@ -11,11 +11,13 @@ from time import perf_counter
 import bpy
 
 from . import animation, shape_keys
-from .label_source import labels_for_run
+from .label_source import is_automatic, labels_for_run
 from .labels import label_counts
 from .mesh_arrays import read_mesh_arrays
 from .polycube_native import LABEL_NAMES
+from .progress_watch import STILL_ITERATIONS, ProgressWatch
 from .report import store_labels_used, store_report
+from .settings import label_options
 from .subdivide import remove_copy, subdivided_copy
 
 
@@ -26,7 +28,8 @@ class ObjectRun:
         start = perf_counter()
         self.settings = settings
         self.mesh = read_mesh_arrays(obj.data)
-        self.labels = labels_for_run(obj, self.mesh, settings.label_source, settings.compactness)
+        self.labels = labels_for_run(obj, self.mesh, settings.label_source, label_options(settings))
+        self.labels_automatic = is_automatic(obj, self.labels)
         self.source_name = None  # the object a subdivided copy was made from
         if settings.subdivide:
             self.source_name = obj.name
@@ -36,6 +39,9 @@ class ObjectRun:
         self.seconds_read = perf_counter() - start
         self.seconds_write = 0.0
         self.kept = []  # iterations written as shape keys, in order
+        # Tolerance 0 asks for every iteration: still ones get no key, but the run goes on.
+        still = STILL_ITERATIONS if settings.tolerance > 0 else 0
+        self.watch = ProgressWatch(self.mesh.vertices, still_iterations=still)
         self.live_preview = False
         self._started = False
 
@@ -46,9 +52,13 @@ class ObjectRun:
                       variant=self.settings.variant.lower())
         return args, kwargs
 
-    def add_iteration(self, iteration, positions, figures):
-        """positions may be None for iterations the settings do not keep."""
-        if positions is not None and self.settings.keeps(iteration):
+    def add_iteration(self, iteration, positions, figures, moved=None):
+        """positions may be None for iterations the settings do not keep; `moved` is
+        what self.watch said of them (asked here when None). An iteration that did
+        not move the mesh gets no shape key. Returns whether to go on."""
+        if moved is None:
+            moved = self.watch.update(iteration, positions)
+        if moved and positions is not None and self.settings.keeps(iteration):
             block = self._write(iteration, positions)
             if self.live_preview:
                 # Only the previous key needs switching off: the others already are.
@@ -56,13 +66,17 @@ class ObjectRun:
                     blocks = block.id_data.key_blocks
                     blocks[shape_keys.key_name(self.kept[-2], self.settings.iterations)].value = 0.0
                 block.value = 1.0
+        return not self.watch.stalled
 
     def finish(self, result, seconds_solve):
         """Write the last iteration if not yet kept, animate, store the report; returns it."""
         report = dict(result["report"])
-        last = int(report["iterations"])
+        # The final positions are those of the last iteration that moved the mesh.
+        last = self.watch.last_moved
         if last > 0 and (not self.kept or self.kept[-1] != last):
             self._write(last, result["positions"])
+        if self.watch.stalled:
+            report.update(stalled_at=self.watch.stalled_at, moved_until=self.watch.last_moved)
         obj = self._object()
         if not self._started:
             # Nothing to write (already a polycube): earlier Polycube keys are stale.
@@ -86,6 +100,7 @@ class ObjectRun:
             label_source=self.labels.source,
             label_counts=dict(zip(LABEL_NAMES, counts)),
             labelled_faces=len(self.labels.values) - unlabelled,
+            labels_automatic=self.labels_automatic,
             kept_iterations=list(self.kept),
         )
         report["seconds"] = dict(report["seconds"], read=self.seconds_read,

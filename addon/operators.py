@@ -17,9 +17,9 @@ from .settings import DeformSettings
 from .solver_thread import SolverThread
 from .subdivide import source_object
 
-# Events that reach the rest of Blender while the solver runs: looking around only,
-# so nothing can edit, undo or delete the object that shape keys are being written to.
-_PASS_THROUGH = {
+# Events that reach the rest of Blender while the solver (or the labeller) runs:
+# looking around only, so nothing can edit, undo or delete the object being written to.
+PASS_THROUGH = {
     'MIDDLEMOUSE', 'WHEELUPMOUSE', 'WHEELDOWNMOUSE', 'WHEELINMOUSE', 'WHEELOUTMOUSE',
     'MOUSEMOVE', 'INBETWEEN_MOUSEMOVE', 'TRACKPADPAN', 'TRACKPADZOOM', 'MOUSEROTATE',
     'MOUSESMARTZOOM', 'NDOF_MOTION', 'WINDOW_DEACTIVATE', 'TIMER', 'TIMERREPORT',
@@ -49,11 +49,18 @@ class OBJECT_OT_polycube_deform(DeformSettings, bpy.types.Operator):
         self._problems, self._reports = [], []
         for run in self._prepare(context):
             args, kwargs = run.solver_call()
+            outside = [0.0]  # seconds in the callback (the watch, writing keys): not solving
+
+            def on_iteration(*message, run=run, outside=outside):
+                entered = perf_counter()
+                go_on = run.add_iteration(*message)
+                outside[0] += perf_counter() - entered
+                return go_on
+
             start = perf_counter()
             try:
-                result = polycube_native.deform(*args, callback=run.add_iteration, **kwargs)
-                # The callback wrote shape keys on this thread: that time is not solving.
-                self._reports.append(run.finish(result, perf_counter() - start - run.seconds_write))
+                result = polycube_native.deform(*args, callback=on_iteration, **kwargs)
+                self._reports.append(run.finish(result, perf_counter() - start - outside[0]))
             except (ValueError, RuntimeError) as error:
                 self._fail(run, error)
         return self._conclude(context)
@@ -82,7 +89,7 @@ class OBJECT_OT_polycube_deform(DeformSettings, bpy.types.Operator):
             return {'RUNNING_MODAL'}
         if event.type == 'TIMER' and self._pump(context):
             return self._end(context)
-        return {'PASS_THROUGH'} if event.type in _PASS_THROUGH else {'RUNNING_MODAL'}
+        return {'PASS_THROUGH'} if event.type in PASS_THROUGH else {'RUNNING_MODAL'}
 
     def cancel(self, context):
         # Blender is closing the window: let the thread go, keep what is written.
@@ -118,7 +125,7 @@ class OBJECT_OT_polycube_deform(DeformSettings, bpy.types.Operator):
         self._run_error = None
         self._run.live_preview = preferences.live_preview(context)
         args, kwargs = self._run.solver_call()
-        self._thread = SolverThread(args, kwargs, self._run.settings.keeps)
+        self._thread = SolverThread(args, kwargs, self._run.settings.keeps, self._run.watch)
         self._thread.start()
 
     def _pump(self, context):
@@ -128,9 +135,9 @@ class OBJECT_OT_polycube_deform(DeformSettings, bpy.types.Operator):
             kind = message[0]
             if kind == "iteration":
                 if self._run_error is None:
-                    _, iteration, positions, figures = message
+                    _, iteration, positions, figures, moved = message
                     try:
-                        self._run.add_iteration(iteration, positions, figures)
+                        self._run.add_iteration(iteration, positions, figures, moved)
                     except (ValueError, RuntimeError) as error:
                         # Keep draining: the thread may wait for the queue to empty.
                         self._run_error = error
@@ -202,8 +209,9 @@ class OBJECT_OT_polycube_deform(DeformSettings, bpy.types.Operator):
                 if "animation_frames" in report]
         if ends:
             scene = context.scene
-            scene.frame_start, scene.frame_end = self.start_frame, max(ends)
-            scene.frame_set(max(ends))
+            if self.fit_frame_range:
+                scene.frame_start, scene.frame_end = self.start_frame, max(ends)
+            scene.frame_set(max(ends))  # the polycube shows
         for report in self._reports:
             self.report({'INFO'}, _summary(report))
         return {'FINISHED'}
@@ -227,4 +235,5 @@ def _summary(report):
                f"{report['flipped_faces']} flipped faces, "
                f"{len(report['kept_iterations'])} shape keys.")
     hint = advice(report)
-    return f"{summary} Not a polycube yet: {'; '.join(hint).lower()}." if hint else summary
+    return f"{summary} Not a polycube yet: {'; '.join(line[0].lower() + line[1:] for line in hint)}." \
+        if hint else summary

@@ -14,7 +14,22 @@ class PolycubePreferences(bpy.types.AddonPreferences):
         default=True)
 
     def draw(self, context):
+        if native_error() is not None:
+            from .unavailable import explain
+            explain(self.layout.box())
         self.layout.prop(self, "live_preview")
+
+
+_native_error = [None]
+
+
+def set_native_error(message):
+    _native_error[0] = message
+
+
+def native_error():
+    """Why the native module could not be imported, or None."""
+    return _native_error[0]
 
 
 def live_preview(context):

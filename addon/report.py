@@ -60,6 +60,8 @@ def failure(name, verb, error):
 
 def outcome(report):
     """How the run ended, in a word or two."""
+    if report.get("stalled_at"):
+        return "no progress"
     if report["stopped"]:
         return "stopped"
     if report.get("failure"):
@@ -68,20 +70,39 @@ def outcome(report):
 
 
 def advice(report):
-    """Short lines on what to try when the run did not become an exact
-    polycube; empty when it did (or was stopped).
+    """Short lines on what happened and what to try when the run did not become
+    an exact polycube; empty when it did (or the user stopped it).
 
-    The robust solver flattens the charts once it is close; when every attempt
-    would crush part of the model (or leaves folds), the labels ask for more
-    than the mesh can give, and better labels are the way out."""
-    if report.get("converged") or report.get("stopped"):
+    The robust solver flattens the charts once it is close; an attempt is
+    refused when it leaves folds or would crush too much of the model. Either
+    way the labels ask for more than the mesh can give, and what to try depends
+    on where they came from."""
+    stalled = report.get("stalled_at")
+    if report.get("converged") or (report.get("stopped") and not stalled):
         return []
     refused = [attempt for attempt in report.get("flatten_attempts") or () if not attempt.get("kept")]
-    if not refused:
+    if not refused and not stalled:
         return []
-    crushed = max(attempt.get("collapsed_area", 0.0) for attempt in refused)
-    return [f"Flat charts would collapse {100 * crushed:.0f}% of the surface",
-            "Try Auto Label, or relabel the unconverged faces"]
+    lines = []
+    if stalled:
+        lines.append(f"The mesh stopped moving after iteration {report.get('moved_until', 0)}; "
+                     f"stopped at iteration {stalled}")
+    if refused:
+        last = refused[-1]
+        collapsed = f"{100 * last.get('collapsed_area', 0.0):.0f}% of the surface"
+        if last.get("folds_left"):
+            lines.append(f"Flat charts would leave {last['folds_left']} folded faces "
+                         f"(and collapse {collapsed})")
+        else:
+            lines.append(f"Flat charts would collapse {collapsed}")
+    if report.get("labels_automatic"):
+        lines.append("The automatic labels ask too much here: relabel the unconverged faces "
+                     "(Edit Mode, Assign Label), or try another Compactness")
+    elif report.get("labelled_faces", 1) == 0:
+        lines.append("Every face took its nearest axis: try Auto Label")
+    else:
+        lines.append("Try Auto Label, or relabel the unconverged faces")
+    return lines
 
 
 def _plain(value):

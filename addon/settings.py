@@ -20,20 +20,28 @@ def _setting_names(cls):
 
 
 class LabelSettings:
+    """The automatic labeller's options, each named as the native auto_labels'
+    keyword argument it is passed to (label_options)."""
     compactness: FloatProperty(
         name="Compactness",
         description="Automatic labels: larger values give fewer, rounder charts",
         default=DEFAULT_COMPACTNESS, min=0.0, soft_max=10.0, precision=2)
 
 
+def label_options(settings):
+    """The keyword arguments of polycube_native.auto_labels from any settings
+    object (operator, scene, RunSettings): every LabelSettings property."""
+    return {name: getattr(settings, name) for name in _setting_names(LabelSettings)}
+
+
 class DeformSettings(LabelSettings):
     label_source: EnumProperty(
         name="Labels", description="Where each face's label comes from",
         items=(
-            ('STORED', "Face Maps / Attribute",
+            ('STORED', "Stored Labels",
              "The object's face maps or polycube_label attribute; unlabelled faces take their nearest axis"),
-            ('AUTO', "Automatic", "Label every face automatically, ignoring the stored labels"),
-            ('AUTO_UNLABELLED', "Automatic Where Unlabelled",
+            ('AUTO', "Automatic Labels", "Label every face automatically, ignoring the stored labels"),
+            ('AUTO_UNLABELLED', "Auto Where Unlabelled",
              "Keep the stored labels and label the other faces automatically"),
         ),
         default='STORED')
@@ -42,8 +50,9 @@ class DeformSettings(LabelSettings):
         default=100, min=1, soft_max=1000)
     tolerance: FloatProperty(
         name="Tolerance",
-        description="Stop once every face's normal is within this many degrees of its label's axis",
-        default=0.5, min=1e-4, soft_max=10.0, precision=3)
+        description="Stop once every face's normal is within this many degrees of its label's axis "
+                    "(0: run every iteration)",
+        default=0.5, min=0.0, soft_max=10.0, precision=3)
     variant: EnumProperty(
         name="Solver", description="How the solver steps towards the polycube",
         items=variant_items(), default=DEFAULT_VARIANT.upper())
@@ -62,6 +71,10 @@ class DeformSettings(LabelSettings):
         description="Keyframe the shape keys: frame start + k shows iteration k", default=False)
     start_frame: IntProperty(
         name="Start Frame", description="Frame that shows the input mesh", default=1)
+    fit_frame_range: BoolProperty(
+        name="Fit Frame Range",
+        description="Set the scene's start and end frames to the animation's (otherwise they stay as they are)",
+        default=False)
     subdivide: BoolProperty(
         name="Subdivide Before",
         description="Deform a subdivided copy, the object '<name> polycube', instead of the mesh itself",
@@ -79,24 +92,31 @@ class DeformSettings(LabelSettings):
         default='BILINEAR')
 
     def draw_settings(self, layout):
-        layout.use_property_split = True
+        # Values and check boxes get the whole width: the sidebar is narrow.
         layout.use_property_decorate = False
-        layout.prop(self, "label_source")
+        layout.prop(self, "label_source", text="", icon='FACESEL')
+        column = layout.column()
+        column.use_property_split = True
         if self.label_source != 'STORED':
-            layout.prop(self, "compactness")
-        layout.prop(self, "iterations")
-        layout.prop(self, "tolerance")
-        layout.prop(self, "variant")
-        layout.prop(self, "keep")
+            column.prop(self, "compactness")
+        column.prop(self, "iterations")
+        column.prop(self, "tolerance")
+        column.prop(self, "variant")
+        column.prop(self, "keep")
         if self.keep == 'EVERY':
-            layout.prop(self, "keep_every")
+            column.prop(self, "keep_every")
         layout.prop(self, "animate")
         if self.animate:
-            layout.prop(self, "start_frame")
+            column = layout.column()
+            column.use_property_split = True
+            column.prop(self, "start_frame")
+            layout.prop(self, "fit_frame_range")
         layout.prop(self, "subdivide")
         if self.subdivide:
-            layout.prop(self, "subdivide_levels")
-            layout.prop(self, "subdivide_scheme")
+            column = layout.column()
+            column.use_property_split = True
+            column.prop(self, "subdivide_levels")
+            column.prop(self, "subdivide_scheme")
 
     def copy_settings_to(self, target):
         for name in _setting_names(DeformSettings):

@@ -3,12 +3,14 @@
 
 The user's object keeps its vertex count and its shape keys; the copy gets the
 refined mesh (OpenSubdiv, native `refine`), each child face keeping its parent's
-label (in the `polycube_label` attribute), material and smooth flag. Running
-again replaces the copy's mesh instead of making another copy.
+label (in the `polycube_label` attribute), material and smooth flag. The copy
+is placed beside the object, along world X, so both stay visible. Running again
+replaces the copy's mesh (not its place) instead of making another copy.
 """
 
 import bpy
 import numpy as np
+from mathutils import Matrix, Vector
 
 from .labels import Labels, write_label_attribute
 from .mesh_arrays import new_mesh, read_mesh_arrays
@@ -51,14 +53,23 @@ def subdivided_copy(obj, mesh, labels, levels, scheme):
         for collection in obj.users_collection:
             collection.objects.link(copy)
         copy[SOURCE_PROPERTY] = obj.name
+        copy.matrix_world = Matrix.Translation((_beside(obj), 0.0, 0.0)) @ obj.matrix_world
     else:
+        # The copy stays where it is (the user may have moved it).
         old = copy.data
         copy.data = data
         if old.users == 0:
             bpy.data.meshes.remove(old)
-    copy.matrix_world = obj.matrix_world
     how = f"{scheme.lower()} x{levels}"
     return copy, arrays, Labels(values, f"{labels.source}, subdivided ({how})")
+
+
+def _beside(obj):
+    """How far along world X a copy of `obj` goes so that the two do not overlap:
+    its world width and a quarter of it as a gap."""
+    corners = np.array([obj.matrix_world @ Vector(corner) for corner in obj.bound_box])
+    width = float(np.ptp(corners[:, 0])) if len(corners) else 0.0
+    return 1.25 * width if width > 0 else 1.0
 
 
 def remove_copy(copy):

@@ -115,7 +115,13 @@ py::dict deform_py(const DoubleArray& vertices, const IntArray& face_indices, co
   py::dict out;
   out["positions"] = to_numpy(result.positions);
   out["labels"] = to_int_array(result.labels);
-  out["report"] = json_loads(deform_report_json(mesh, result, options));
+  py::dict report = json_loads(deform_report_json(mesh, result, options));
+  // The JSON report lists at most a thousand ids per face list (a file for people);
+  // here every id is given, so a user interface can select all of them.
+  report["unconverged_faces"] = to_int_array(result.unconverged_faces);
+  report["flipped_face_ids"] = to_int_array(result.flipped_faces);
+  report["relabelled_faces"] = to_int_array(result.relabelled_faces);
+  out["report"] = report;
   return out;
 }
 
@@ -327,7 +333,8 @@ PYBIND11_MODULE(polycube_native, m) {
 vertices (n, 3) float; face_indices: all face corners, flat; face_sizes: corners per face;
 labels: per face, 0..5 = +X, -X, +Y, -Y, +Z, -Z, -1 = nearest axis.
 callback(iteration, positions, figures) is called after every iteration; returning False stops.
-Returns {"positions", "labels", "report"}. Raises ValueError on bad input.)");
+Returns {"positions", "labels", "report"}; the report's face lists (unconverged_faces,
+flipped_face_ids, relabelled_faces) hold every id, as int32 arrays. Raises ValueError on bad input.)");
   m.def("nearest_labels", &nearest_labels_py, py::arg("vertices"), py::arg("face_indices"), py::arg("face_sizes"),
         "Label every face by the axis nearest its normal.");
   m.def("figures", &figures_py, py::arg("input_vertices"), py::arg("output_vertices"), py::arg("face_indices"),

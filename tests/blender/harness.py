@@ -77,6 +77,17 @@ def uv_sphere(name="Sphere", segments=32, rings=16, location=(0, 0, 0)):
     return obj
 
 
+def cube_with_nine_faces_a_side():
+    bpy.ops.mesh.primitive_cube_add()
+    cube = bpy.context.active_object
+    bpy.ops.object.mode_set(mode='EDIT')
+    bpy.ops.mesh.select_all(action='SELECT')
+    bpy.ops.mesh.subdivide(number_cuts=2)
+    bpy.ops.object.mode_set(mode='OBJECT')
+    assert len(cube.data.polygons) == 54
+    return cube
+
+
 def nearest_axis_labels(obj):
     import polycube
     return np.asarray(polycube.polycube_native.nearest_labels(*arrays(obj)))

@@ -27,7 +27,7 @@ def _close(a, b):
 
 def test_frame_start_plus_k_shows_iteration_k():
     sphere = labelled_sphere()
-    deform(sphere, iterations=200, animate=True, start_frame=START)
+    deform(sphere, iterations=200, animate=True, start_frame=START, fit_frame_range=True)
     last = report(sphere)["iterations"]
     scene = bpy.context.scene
     assert (scene.frame_start, scene.frame_end) == (START, START + last)
@@ -37,6 +37,16 @@ def test_frame_start_plus_k_shows_iteration_k():
     for k in range(1, last + 1):
         assert _close(_at(sphere, START + k), key_coordinates(sphere, f"Polycube {k:03d}")), k
     assert _close(_at(sphere, START + last + 20), key_coordinates(sphere, f"Polycube {last:03d}"))
+
+
+def test_the_scene_frame_range_stays_unless_asked():
+    sphere = labelled_sphere()
+    scene = bpy.context.scene
+    scene.frame_start, scene.frame_end = 1, 250
+    deform(sphere, iterations=200, animate=True, start_frame=START)
+    last = report(sphere)["iterations"]
+    assert (scene.frame_start, scene.frame_end) == (1, 250)
+    assert scene.frame_current == START + last  # the polycube shows
 
 
 def test_frames_between_kept_iterations_blend_linearly():

@@ -10,8 +10,8 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from harness import (  # noqa: E402
-    add_attribute, add_face_maps, arrays, deform, enable_addon, key_figures, key_names,
-    nearest_axis_labels, report, run_tests, select_only, uv_sphere)
+    add_attribute, add_face_maps, arrays, cube_with_nine_faces_a_side, deform, enable_addon, key_figures,
+    key_names, nearest_axis_labels, report, run_tests, select_only, uv_sphere)
 
 polycube = enable_addon()
 from polycube.label_cache import label_summary  # noqa: E402
@@ -51,17 +51,6 @@ def _expected_auto_labels(obj, **settings):
     mesh = arrays(obj)
     return np.asarray(polycube.polycube_native.auto_labels(
         mesh.vertices, mesh.face_indices, mesh.face_sizes, **settings))
-
-
-def _cube_with_nine_faces_a_side():
-    bpy.ops.mesh.primitive_cube_add()
-    cube = bpy.context.active_object
-    bpy.ops.object.mode_set(mode='EDIT')
-    bpy.ops.mesh.select_all(action='SELECT')
-    bpy.ops.mesh.subdivide(number_cuts=2)
-    bpy.ops.object.mode_set(mode='OBJECT')
-    assert len(cube.data.polygons) == 54
-    return cube
 
 
 def _edge_neighbours(obj, face):
@@ -126,7 +115,7 @@ def test_auto_label_is_undone_in_one_step():
 
 
 def test_validation_selects_exactly_the_offending_faces():
-    cube = _cube_with_nine_faces_a_side()
+    cube = cube_with_nine_faces_a_side()
     labels = nearest_axis_labels(cube)
     centres = np.array([p.center for p in cube.data.polygons])
     centre = int(np.flatnonzero((labels == 4) & (np.abs(centres[:, :2]).max(axis=1) < 0.1))[0])
@@ -153,7 +142,7 @@ def test_validation_selects_exactly_the_offending_faces():
 
 
 def test_validation_of_good_labels_selects_nothing_and_goes_stale_when_they_change():
-    cube = _cube_with_nine_faces_a_side()
+    cube = cube_with_nine_faces_a_side()
     labels = nearest_axis_labels(cube).astype(np.int32)
     add_attribute(cube.data, "polycube_label", 'INT', labels)
     select_only(cube)
@@ -185,7 +174,7 @@ def test_validation_names_an_inward_wound_mesh_and_labels_for_the_other_winding(
     _auto_label(sphere)
     validation = load_validation(sphere, label_summary(sphere).digest)
     assert validation["orientation"] == ["Wound inward"], validation
-    cube = _cube_with_nine_faces_a_side()
+    cube = cube_with_nine_faces_a_side()
     add_attribute(cube.data, "polycube_label", 'INT', nearest_axis_labels(cube).astype(np.int32))
     select_only(cube)
     bpy.ops.object.polycube_validate_labels()
@@ -193,7 +182,7 @@ def test_validation_names_an_inward_wound_mesh_and_labels_for_the_other_winding(
 
 
 def test_validation_from_edit_mode_and_its_undo():
-    cube = _cube_with_nine_faces_a_side()
+    cube = cube_with_nine_faces_a_side()
     labels = nearest_axis_labels(cube)
     labels[0] = {0: 1, 1: 0, 2: 3, 3: 2, 4: 5, 5: 4}[int(labels[0])]
     add_attribute(cube.data, "polycube_label", 'INT', labels.astype(np.int32))

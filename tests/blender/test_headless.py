@@ -222,13 +222,15 @@ def test_fandisk_off_from_libcgal_demo():
 
 
 def test_labels_that_cannot_be_flattened_get_advice():
-    # The elephant's nearest-axis labels: flattening would crush a third of it.
+    # The elephant's nearest-axis labels: flattening would leave folds and crush a
+    # sixth of it (the last refused attempt: 570 folds, 16%).
     done = _headless("--input", os.path.join(MESHES, "elephant.off"), "--iterations", "40")
     assert done.returncode == 0, done.stderr
-    assert "not converged" in done.stdout and "flipped faces 0" in done.stdout, done.stdout
-    match = re.search(r"Flat charts would collapse (\d+)% of the surface", done.stdout)
-    assert match and int(match.group(1)) > 20, done.stdout
-    assert "Try Auto Label" in done.stdout
+    assert re.search(r"not converged|no progress", done.stdout) and "flipped faces 0" in done.stdout, done.stdout
+    match = re.search(r"Flat charts would (?:leave \d+ folded faces \(and )?collapse (\d+)% of the surface",
+                      done.stdout)
+    assert match and int(match.group(1)) > 10, done.stdout
+    assert "Every face took its nearest axis: try Auto Label" in done.stdout
 
 
 def test_bad_input_gives_a_message_and_a_failing_status():

@@ -1,7 +1,12 @@
 """The add-on as a user gets it: installed from the package zip, enabled, registered."""
 
+import glob
 import os
+import re
+import shutil
+import subprocess
 import sys
+import tempfile
 import zipfile
 
 import addon_utils
@@ -50,6 +55,9 @@ def test_bl_info_and_manifest_agree():
     assert manifest["type"] == "add-on"
     assert ".".join(map(str, polycube.bl_info["version"])) == manifest["version"]
     assert polycube.bl_info["blender"] == (3, 4, 0)
+    assert manifest["website"].startswith("https://") and "#blender-add-on" in manifest["website"]
+    assert polycube.bl_info["doc_url"] == manifest["website"]
+    assert polycube.bl_info["tracker_url"].startswith("https://")
 
 
 def test_everything_registered():
@@ -72,6 +80,76 @@ def test_disable_then_enable_again():
     sphere = labelled_sphere()
     assert deform(sphere, iterations=3) == {'FINISHED'}
     assert report(sphere)["iterations"] == 3
+
+
+# What every Linux that runs Blender has; the zip must carry every other library.
+_SYSTEM = re.compile(r"^(linux-vdso|ld-linux|libc|libm|libstdc\+\+|libgcc_s|libgomp)[.\-]")
+
+
+def test_the_zip_carries_every_library_beyond_glibc_and_libstdcxx():
+    folder = tempfile.mkdtemp(prefix="polycube-unzipped-")
+    try:
+        with zipfile.ZipFile(os.environ["POLYCUBE_ZIP"]) as archive:
+            archive.extractall(folder)
+        unpacked = os.path.join(folder, "polycube")
+        module, = glob.glob(os.path.join(unpacked, "polycube_native*.so"))
+        dynamic = subprocess.run(["readelf", "-d", module], check=True, capture_output=True, text=True).stdout
+        assert re.search(r"\(RPATH\)\s+Library rpath: \[\$ORIGIN/lib\]", dynamic), dynamic
+        needed = re.findall(r"\(NEEDED\)\s+Shared library: \[(\S+)\]", dynamic)
+        assert "libcholmod.so.3" in needed and "libosdCPU.so.3.5.0" in needed, needed
+        # ldd resolves as the loader does (the zip's rpath, then the system).
+        resolved = subprocess.run(["ldd", module], check=True, capture_output=True, text=True).stdout
+        outside = []
+        for line in resolved.splitlines():
+            name, _, where = line.strip().partition(" => ")
+            assert "not found" not in where, line
+            path = where.split(" (")[0]
+            inside = os.path.realpath(path).startswith(os.path.realpath(unpacked) + os.sep)
+            if where and not inside and not _SYSTEM.match(name):
+                outside.append(line.strip())
+        assert not outside, outside
+        assert len(os.listdir(os.path.join(unpacked, "lib"))) >= 10
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
+
+
+def test_the_running_module_uses_the_libraries_inside_the_addon():
+    with open("/proc/self/maps", encoding="utf-8") as maps:
+        mapped = {line.split()[-1] for line in maps if ".so" in line}
+    # A library Blender itself loaded (Debian's Blender: OpenSubdiv) is shared by soname.
+    blender_has = subprocess.run(["ldd", bpy.app.binary_path], capture_output=True, text=True).stdout
+    bundled = os.listdir(os.path.join(INSTALLED, "lib"))
+    for library in bundled:
+        paths = [path for path in mapped if os.path.basename(path) == library]
+        if library not in blender_has:
+            assert paths == [os.path.join(INSTALLED, "lib", library)], (library, paths)
+    assert "libcholmod.so.3" in bundled and "libcholmod.so.3" not in blender_has
+    sphere = labelled_sphere()
+    assert deform(sphere, iterations=50) == {'FINISHED'} and report(sphere)["converged"]
+
+
+def test_a_module_that_cannot_load_leaves_the_addon_enabled_saying_why():
+    scripts = tempfile.mkdtemp(prefix="polycube-broken-")
+    try:
+        broken = os.path.join(scripts, "addons", "polycube")
+        shutil.copytree(INSTALLED, broken, ignore=shutil.ignore_patterns("lib", "__pycache__"))
+        for module in glob.glob(os.path.join(broken, "polycube_native*.so")):
+            with open(module, "wb") as file:
+                file.write(b"not a shared library")
+        script = (
+            "import bpy, sys\n"
+            "assert bpy.ops.preferences.addon_enable(module='polycube') == {'FINISHED'}\n"
+            "import polycube\n"
+            "assert hasattr(bpy.types, 'VIEW3D_PT_polycube_unavailable')\n"
+            "assert not hasattr(bpy.types, 'OBJECT_OT_polycube_deform')\n"
+            "print('REASON:', polycube.preferences.native_error())\n")
+        done = subprocess.run(
+            [bpy.app.binary_path, "-b", "--factory-startup", "--python-exit-code", "1", "--python-expr", script],
+            env=dict(os.environ, BLENDER_USER_SCRIPTS=scripts), capture_output=True, text=True, timeout=120)
+        assert done.returncode == 0, done.stdout + done.stderr
+        assert re.search(r"REASON: .*polycube_native", done.stdout), done.stdout
+    finally:
+        shutil.rmtree(scripts, ignore_errors=True)
 
 
 run_tests(globals())

@@ -6,6 +6,7 @@ import os
 import sys
 
 import bpy
+from mathutils import Vector
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -61,7 +62,10 @@ def test_quads_subdivided_into_a_copy_with_4_to_the_k_faces():
     assert report(copy)["subdivided_from"] == "Cube" and report(copy)["converged"]
     assert report(copy)["label_source"] == "face maps, subdivided (bilinear x2)"
     assert copy.data.materials[0] == material
-    assert tuple(copy.matrix_world.translation) == (2, 0, 0)
+    # Beside the cube (at x = 2), not on top of it: along x, past its shown width.
+    x, y, z = copy.matrix_world.translation
+    shown_right = max((cube.matrix_world @ Vector(corner)).x for corner in cube.bound_box)
+    assert (y, z) == (0, 0) and x - 1 > shown_right + 0.25, (x, shown_right)
     # Bilinear keeps the shape: every vertex on the cube's surface.
     assert np.abs(np.abs(vertices(copy)).max(axis=1) - 1).max() < 1e-6
 

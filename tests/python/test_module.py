@@ -154,3 +154,17 @@ def test_variants_and_defaults_are_published(native):
     assert native.VARIANTS[0] == native.DEFAULT_VARIANT == "robust"
     assert set(native.VARIANTS) == {"robust", "fixed", "current"}
     assert 0 < native.DEFAULT_COMPACTNESS
+
+
+def test_face_lists_hold_every_id(native):
+    # Every face asked to face +Z: past a thousand unconverged faces, which the
+    # JSON report would cut short; the module lists them all.
+    vertices, face_indices, face_sizes = uv_sphere(segments=96, rings=48)
+    labels = np.full(len(face_sizes), 4, dtype=np.int32)
+    report = native.deform(vertices, face_indices, face_sizes, labels, iterations=2, tolerance=0.01,
+                           variant="fixed")["report"]
+    assert report["unconverged_faces_count"] > 1000
+    for key in ("unconverged_faces", "flipped_face_ids", "relabelled_faces"):
+        ids = np.asarray(report[key])
+        assert len(ids) == report[f"{key}_count"], key
+        assert np.all(np.diff(ids) > 0), key
