@@ -53,7 +53,7 @@ def main(argv):
     bpy.context.view_layer.objects.active = targets[0]
     try:
         if args.labels == "auto":
-            bpy.ops.object.polycube_auto_label(compactness=args.compactness)
+            bpy.ops.object.polycube_auto_label(detail=args.detail)
         bpy.ops.object.polycube_deform(
             iterations=args.iterations, tolerance=args.tolerance, variant=args.variant.upper(),
             keep=args.keep.upper(), keep_every=args.keep_every, animate=args.animate,
@@ -97,8 +97,8 @@ def _parse(argv, native_options):
     parser.add_argument("--labels", metavar="FILE|auto",
                         help="a file with one label per face (-1..5 = none, +X, -X, +Y, -Y, +Z, -Z; "
                              "one object only), or auto: the automatic labeller on every object")
-    parser.add_argument("--compactness", type=float, default=native_options.DEFAULT_COMPACTNESS,
-                        help="automatic labels: larger gives fewer, rounder charts")
+    parser.add_argument("--detail", type=float, default=native_options.DEFAULT_DETAIL,
+                        help="automatic labels, 0..1: 0 gives a few large charts, 1 many small ones")
     parser.add_argument("--iterations", type=int, default=100)
     parser.add_argument("--tolerance", type=float, default=0.5,
                         help="degrees (0: run every iteration)")

@@ -97,7 +97,7 @@ def advice(report):
             lines.append(f"Flat charts would collapse {collapsed}")
     if report.get("labels_automatic"):
         lines.append("The automatic labels ask too much here: relabel the unconverged faces "
-                     "(Edit Mode, Assign Label), or try another Compactness")
+                     "(Edit Mode, Assign Label), or try another Detail")
     elif report.get("labelled_faces", 1) == 0:
         lines.append("Every face took its nearest axis: try Auto Label")
     else:

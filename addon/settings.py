@@ -10,7 +10,7 @@ from collections import namedtuple
 import bpy
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty
 
-from .native_options import DEFAULT_COMPACTNESS, DEFAULT_VARIANT, variant_items
+from .native_options import DEFAULT_DETAIL, DEFAULT_VARIANT, variant_items
 
 
 def _setting_names(cls):
@@ -22,10 +22,11 @@ def _setting_names(cls):
 class LabelSettings:
     """The automatic labeller's options, each named as the native auto_labels'
     keyword argument it is passed to (label_options)."""
-    compactness: FloatProperty(
-        name="Compactness",
-        description="Automatic labels: larger values give fewer, rounder charts",
-        default=DEFAULT_COMPACTNESS, min=0.0, soft_max=10.0, precision=2)
+    detail: FloatProperty(
+        name="Detail",
+        description="Automatic labels: 0 gives a few large charts (a polycube you would sketch), "
+                    "1 many small ones that follow every feature",
+        default=DEFAULT_DETAIL, min=0.0, max=1.0, precision=2, subtype='FACTOR')
 
 
 def label_options(settings):
@@ -98,7 +99,7 @@ class DeformSettings(LabelSettings):
         column = layout.column()
         column.use_property_split = True
         if self.label_source != 'STORED':
-            column.prop(self, "compactness")
+            column.prop(self, "detail")
         column.prop(self, "iterations")
         column.prop(self, "tolerance")
         column.prop(self, "variant")

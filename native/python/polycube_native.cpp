@@ -324,6 +324,7 @@ PYBIND11_MODULE(polycube_native, m) {
   m.attr("VARIANTS") = py::tuple(variants);
   m.attr("DEFAULT_VARIANT") = variant_name(DeformOptions{}.variant);
   m.attr("DEFAULT_COMPACTNESS") = AutoLabelOptions{}.compactness;
+  m.attr("DEFAULT_DETAIL") = 0.5;
 
   m.def("deform", &deform_py, py::arg("vertices"), py::arg("face_indices"), py::arg("face_sizes"),
         py::arg("labels"), py::kw_only(), py::arg("iterations") = 100, py::arg("tolerance") = 0.5,

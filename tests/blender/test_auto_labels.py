@@ -61,9 +61,9 @@ def _edge_neighbours(obj, face):
 
 def test_auto_label_writes_the_attribute_and_face_maps():
     sphere = uv_sphere()
-    assert _auto_label(sphere, compactness=0.3) == {'FINISHED'}
+    assert _auto_label(sphere, detail=0.3) == {'FINISHED'}
     labels = _int_attribute(sphere, "polycube_label")
-    assert np.array_equal(labels, _expected_auto_labels(sphere, compactness=0.3))
+    assert np.array_equal(labels, _expected_auto_labels(sphere, detail=0.3))
     assert sorted(np.unique(labels).tolist()) == list(range(6))
     # One face map per label, named +X ... -Z, holding exactly the faces of that label.
     assert sorted(face_map.name for face_map in sphere.face_maps) == sorted(NAMES)
@@ -223,7 +223,7 @@ def test_label_colours_match_the_labels_and_leave_the_users_colours_alone():
 
     # Relabelling refreshes colours that are shown.
     add_attribute(mesh, "polycube_label", 'INT', np.full(len(labels), 2, np.int32))
-    _auto_label(sphere, compactness=0.3)
+    _auto_label(sphere, detail=0.3)
     colours.data.foreach_get("color", values)
     labels = _int_attribute(sphere, "polycube_label")
     assert np.abs(values.reshape(-1, 4) - LABEL_COLOURS[labels[face_of_loop]]).max() < 0.01
@@ -242,7 +242,7 @@ def test_label_source_automatic_on_an_unlabelled_sphere():
     result = report(sphere)
     assert result["label_source"] == "automatic" and result["unlabelled_faces"] == 0
     assert result["converged"] and result["flipped_faces"] == 0, result
-    labels = _expected_auto_labels(sphere, compactness=bpy.context.scene.polycube.compactness)
+    labels = _expected_auto_labels(sphere, detail=bpy.context.scene.polycube.detail)
     final = key_figures(sphere, key_names(sphere)[-1], labels)
     assert final["flipped_faces"] == 0 and final["normal_deviation_max_deg"] < 0.5, final
     # The labels were computed for the run, not written to the mesh.
@@ -284,7 +284,7 @@ def test_operators_are_registered_undoable():
         assert {'REGISTER', 'UNDO'} <= set(cls.bl_options), name
     scene = bpy.context.scene.polycube
     operator = bpy.ops.object.polycube_auto_label.get_rna_type().properties
-    assert scene.compactness == operator["compactness"].default
+    assert scene.detail == operator["detail"].default
     assert scene.label_source == 'STORED'
 
 

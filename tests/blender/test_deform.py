@@ -182,7 +182,7 @@ def test_scene_settings_match_the_operator_defaults():
     operator = bpy.ops.object.polycube_deform.get_rna_type().properties
     settings = bpy.context.scene.polycube
     for name in ("iterations", "tolerance", "variant", "keep", "keep_every", "animate", "start_frame",
-                 "label_source", "compactness", "subdivide", "subdivide_levels", "subdivide_scheme"):
+                 "label_source", "detail", "subdivide", "subdivide_levels", "subdivide_scheme"):
         assert getattr(settings, name) == operator[name].default, name
 
 
