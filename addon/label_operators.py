@@ -65,7 +65,8 @@ in Blender 3.x, face maps +X ... -Z"""
                 labels = np.asarray(auto_labels(mesh.vertices, mesh.face_indices, mesh.face_sizes,
                                                 compactness=self.compactness), dtype=np.int32)
             except ValueError as error:
-                self.report({'WARNING'}, failure(obj.name, "labelled", error))
+                # An error, not a warning: scripts (headless --labels auto) see it as RuntimeError.
+                self.report({'ERROR'}, failure(obj.name, "labelled", error))
                 continue
             write_label_attribute(obj.data, labels)
             in_user_maps = write_face_maps(obj, labels) if hasattr(obj, "face_maps") else 0

@@ -8,7 +8,7 @@
 
 #include "mesh/mesh.h"
 #include "io/read_mesh.h"
-#include "io/write_mesh.h"
+#include "io/output_files.h"
 
 namespace polycube {
 namespace {
@@ -61,7 +61,7 @@ std::vector<int> read_labels(const std::string& path, int face_count) {
   return labels;
 }
 
-void write_labels(const std::string& path, const std::vector<int>& labels) {
+std::string labels_file_text(const std::string& path, const std::vector<int>& labels) {
   std::string out = std::string("# polycube face labels, one per face in face order: ") + kConvention + "\n";
   out.reserve(out.size() + labels.size() * 3);
   for (size_t f = 0; f < labels.size(); ++f) {
@@ -71,7 +71,11 @@ void write_labels(const std::string& path, const std::vector<int>& labels) {
     out += std::to_string(labels[f]);
     out += '\n';
   }
-  write_file_atomically(path, out);
+  return out;
+}
+
+void write_labels(const std::string& path, const std::vector<int>& labels) {
+  write_file_atomically(path, labels_file_text(path, labels));
 }
 
 }  // namespace polycube

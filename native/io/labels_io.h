@@ -19,4 +19,7 @@ std::vector<int> read_labels(const std::string& path, int face_count);
 // written.
 void write_labels(const std::string& path, const std::vector<int>& labels);
 
+// The text write_labels would write (for OutputFiles::stage); the same errors.
+std::string labels_file_text(const std::string& path, const std::vector<int>& labels);
+
 }  // namespace polycube
