@@ -86,7 +86,7 @@ fuzz: deps
 	     -max_len=4096 -timeout=30 -rss_limit_mb=4096 -print_final_stats=1 \
 	     -artifact_prefix=$(FUZZ_BUILD)/crashes/ $(FUZZ_BUILD)/corpus tests/fuzz/regressions \
 	     > $(FUZZ_BUILD)/fuzz.log 2>&1; then \
-	  grep -E '^#[0-9]+ +(INITED|DONE)|^Done|^stat::' $(FUZZ_BUILD)/fuzz.log; \
+	  grep -E '^#[0-9]+[[:space:]]+(INITED|DONE)|^Done|^stat::' $(FUZZ_BUILD)/fuzz.log; \
 	else tail -80 $(FUZZ_BUILD)/fuzz.log; ls -l $(FUZZ_BUILD)/crashes; exit 1; fi
 
 # Speed, memory and ratios against the paper-literal variant and a SciPy

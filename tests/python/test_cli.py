@@ -123,6 +123,8 @@ def files_in(folder):
      "cannot write {d}/taken: it is a directory"),
     (lambda d, m: ["deform", m, "--output", d / "taken.obj", "--report", d / "r.json"],
      "cannot write {d}/taken.obj: it is a directory"),
+    (lambda d, m: ["deform", m, "--output", d / "A.obj", "--output-labels", d / "L.txt", "--report", d / "taken"],
+     "cannot write {d}/taken: it is a directory"),
     (lambda d, m: ["refine", m, "--levels", 1, "--output", d / "R.obj", "--labels", d / "labels.txt"],
      "cannot write {d}/R.obj.labels: it is a directory"),
     (lambda d, m: ["label", m, "--output", d / "no" / "L.txt"],
