@@ -82,8 +82,14 @@ def _run(argv):
     reports = {obj.name: package.report.load_report(obj) for obj in bpy.context.selected_objects
                if obj.type == 'MESH'}
     reports = {name: report for name, report in reports.items() if report is not None}
-    for report in reports.values():
-        _print_report(package, report)
+    try:
+        for report in reports.values():
+            _print_report(package, report)
+        sys.stdout.flush()
+    except OSError as error:  # the figures are a result too: > /dev/full is a failure
+        print(f"polycube: cannot write to standard output: {error.strerror or error}; nothing written",
+              file=sys.stderr)
+        return 1
     if len(reports) != len(targets):
         print(f"polycube: {len(targets) - len(reports)} of {len(targets)} objects could not be deformed; "
               f"nothing written", file=sys.stderr)

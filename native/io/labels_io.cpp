@@ -21,7 +21,11 @@ bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' |
 
 std::vector<int> read_labels(const std::string& path, int face_count) {
   if (face_count < 0) throw Error(path + ": cannot read labels for a negative face count");
-  const std::string data = read_file(path);
+  return parse_labels(path, read_file(path), face_count);
+}
+
+std::vector<int> parse_labels(const std::string& path, const std::string& data, int face_count) {
+  if (face_count < 0) throw Error(path + ": cannot read labels for a negative face count");
   std::vector<int> labels;
   labels.reserve(std::min<size_t>(face_count, data.size() / 2 + 1));
   long line = 1;

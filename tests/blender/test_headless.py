@@ -293,6 +293,19 @@ def test_outputs_all_or_none():
         assert json.load(file)["Sphere"]["iterations"] == 5
 
 
+def test_standard_output_that_cannot_be_written_fails_and_writes_nothing():
+    folder = os.path.join(TMP, "full")
+    os.makedirs(folder, exist_ok=True)
+    with open("/dev/full", "w") as full:
+        done = subprocess.run(
+            [bpy.app.binary_path, "-b", "--factory-startup", "--python", HEADLESS, "--", "--iterations", "3",
+             "--report", os.path.join(folder, "r.json")],
+            stdout=full, stderr=subprocess.PIPE, text=True, timeout=600)
+    assert done.returncode == 1, done.stderr
+    assert "polycube: cannot write to standard output: No space left on device; nothing written" in done.stderr
+    assert _files(folder) == []
+
+
 def test_inputs_the_command_line_program_would_refuse():
     folder = os.path.join(TMP, "refused")
     os.makedirs(folder, exist_ok=True)

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "deform/deform.h"
+#include "io/labels_io.h"
 #include "io/read_mesh.h"
 #include "io/write_mesh.h"
 #include "labels/orientation.h"
@@ -36,6 +37,13 @@ int fuzz_mesh(const uint8_t* data, size_t size) {
   if (size == 0) return 0;
   const std::string name = kNames[data[0] % 3];
   const std::string bytes(reinterpret_cast<const char*>(data) + 1, size - 1);
+  // The same bytes as a labels file, for the count the header byte gives.
+  try {
+    const std::vector<int> labels = parse_labels("fuzz.labels", bytes, data[0]);
+    for (int label : labels)
+      if (label < -1 || label > 5) bug("a label outside -1..5 was read");
+  } catch (const Error&) {
+  }
   PolygonMesh mesh;
   try {
     mesh = parse_mesh(name, bytes);

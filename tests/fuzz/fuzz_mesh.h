@@ -1,4 +1,4 @@
-// The fuzz target: one input through the readers, the validator, the
+// The fuzz target: one input through the mesh and label readers, the validator, the
 // orientation check and a short deformation, as a user's file would go.
 // Shared by the libFuzzer program (`make fuzz`, main.cpp beside) and the
 // regression test that replays the seeds and every input that once crashed
@@ -12,7 +12,7 @@
 namespace polycube {
 
 // data[0] % 3 picks the format (0: OFF, 1: OBJ, 2: PLY), the rest is the
-// file. Bad input must end in polycube::Error; anything else (a crash, a
+// file; it is also read as a labels file for data[0] faces. Bad input must end in polycube::Error; anything else (a crash, a
 // sanitizer report, another exception, a write/read round trip that changes
 // the mesh) is a bug and aborts.
 int fuzz_mesh(const uint8_t* data, size_t size);
