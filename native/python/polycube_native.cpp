@@ -98,10 +98,11 @@ PolygonMesh to_mesh(const DoubleArray& vertices, const IntArray& face_indices, c
   PolygonMesh mesh;
   mesh.vertices = to_vertices(vertices, "vertices");
   const long long n = mesh.vertices.rows();
-  mesh.faces.indices =
-      to_ints(face_indices, "face_indices", 0, n - 1,
-              n > 0 ? "the vertex indices 0.." + std::to_string(n - 1) : std::string("vertex indices: there are no vertices"));
-  const std::vector<int> sizes = to_ints(face_sizes, "face_sizes", 3, INT_MAX, "3.. (every face needs at least 3 corners)");
+  const std::string vertex_range =
+      n > 0 ? "the vertex indices 0.." + std::to_string(n - 1) : std::string("any vertex index: there are no vertices");
+  mesh.faces.indices = to_ints(face_indices, "face_indices", 0, n - 1, vertex_range);
+  const std::vector<int> sizes =
+      to_ints(face_sizes, "face_sizes", 3, INT_MAX, "3.. (every face needs at least 3 corners)");
   mesh.faces.offsets.resize(sizes.size() + 1);
   long total = 0;
   for (size_t f = 0; f < sizes.size(); ++f) {
