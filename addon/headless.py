@@ -52,8 +52,9 @@ def _run(argv):
     package = _load_package()
     args = _parse(argv, package.native_options)
     try:
-        if not 0 <= args.subdivide <= package.native_options.MAX_REFINE_LEVELS:
-            raise ValueError(f"--subdivide must be 0..{package.native_options.MAX_REFINE_LEVELS}, got {args.subdivide}")
+        most = package.native_options.MAX_REFINE_LEVELS
+        if not 0 <= args.subdivide <= most:
+            raise ValueError(f"--subdivide must be 0..{most}, got {args.subdivide}")
         targets = _load_input(args, package)
         if args.labels and args.labels != "auto":
             _apply_label_file(args.labels, targets, package)
