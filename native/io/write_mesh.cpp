@@ -160,12 +160,17 @@ void write_mesh(const std::string& path, const Vertices& v, const PolygonFaces& 
   write_file_atomically(path, mesh_file_bytes(path, v, f));
 }
 
-void write_obj_with_uvs(const std::string& path, const Vertices& v, const PolygonFaces& f, const CornerUvs& uvs) {
+std::string obj_with_uvs_bytes(const std::string& path, const Vertices& v, const PolygonFaces& f,
+                               const CornerUvs& uvs) {
   check_mesh(path, v, f);
   if (uvs.rows() != static_cast<Eigen::Index>(f.indices.size()))
     fail(path, std::to_string(uvs.rows()) + " UVs for " + std::to_string(f.indices.size()) + " face corners");
   if (!uvs.allFinite()) fail(path, "a UV coordinate is not finite");
-  write_file_atomically(path, obj_text(v, f, &uvs));
+  return obj_text(v, f, &uvs);
+}
+
+void write_obj_with_uvs(const std::string& path, const Vertices& v, const PolygonFaces& f, const CornerUvs& uvs) {
+  write_file_atomically(path, obj_with_uvs_bytes(path, v, f, uvs));
 }
 
 }  // namespace polycube

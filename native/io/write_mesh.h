@@ -21,6 +21,9 @@ void write_mesh(const std::string& path, const Vertices& v, const PolygonFaces& 
 // An .obj with one `vt` per face corner (uvs: #corners by 2, faces.indices
 // order) and `f v/vt` corners, so UV seams survive. Same checks as write_mesh.
 void write_obj_with_uvs(const std::string& path, const Vertices& v, const PolygonFaces& f, const CornerUvs& uvs);
+// Its bytes, for OutputFiles::stage.
+std::string obj_with_uvs_bytes(const std::string& path, const Vertices& v, const PolygonFaces& f,
+                               const CornerUvs& uvs);
 
 // The bytes write_mesh would write, for OutputFiles::stage when a command
 // writes several files all or none. Throws the same errors, the write aside.

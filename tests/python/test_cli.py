@@ -153,10 +153,13 @@ def test_failed_write_leaves_no_file(program, native, sphere, sphere_off, tmp_pa
     ["refine", "{m}", "--levels", 1, "--output", "{d}/R.obj", "--labels", "{d}/labels.txt"],
     ["label", "{m}", "--output", "{d}/L.txt"],
     ["validate", "{m}", "--labels", "nearest"],
+    ["uv", "{m}", "{d}/poly.off", "--output", "{d}/U.obj"],
+    ["remesh", "{m}", "{d}/poly.off", "--output", "{d}/Q.obj", "--edge-length", 0.2],
     ["deform", "--help"],
 ])
 def test_stdout_that_cannot_be_written_fails_and_leaves_nothing(program, sphere, sphere_off, tmp_path, command):
     (tmp_path / "labels.txt").write_text("0\n" * len(sphere[2]))
+    assert run(program, "deform", sphere_off, "--output", tmp_path / "poly.off").returncode == 0
     before = files_in(tmp_path)
     args = [str(a).format(m=sphere_off, d=tmp_path) for a in command]
     with open("/dev/full", "w") as full:
