@@ -10,12 +10,15 @@ VERSION := $(shell sed -n 's/^version *= *"\(.*\)"/\1/p' blender_manifest.toml 2
 # Debian packages the build, the tests and the demo need.
 DEB_PACKAGES := cmake g++ make pkg-config libeigen3-dev pybind11-dev python3-dev libboost-graph-dev \
   python3-numpy python3-pytest python3-scipy libgtest-dev libosd-dev \
-  libsuitesparse-dev libopenblas0-pthread libcgal-demo blender xvfb xauth zip
+  libsuitesparse-dev libopenblas0-pthread libcgal-demo blender xvfb xauth zip clang libclang-rt-dev
 
 MESHES := $(BUILD)/data/meshes
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: all deps build data test test-native test-python test-blender demo package bench clean
+FUZZ_SECONDS ?= 60
+FUZZ_BUILD   ?= build-fuzz
+
+.PHONY: all deps build data test test-native test-python test-blender demo package bench fuzz clean
 
 all: build
 
@@ -66,10 +69,32 @@ package: build
 	cd $(BUILD)/package && zip -qr ../../dist/polycube-$(VERSION).zip polycube
 	@echo "Wrote dist/polycube-$(VERSION).zip"
 
+# The readers, the validator and the deformation under AddressSanitizer and
+# UBSan, fed by libFuzzer (clang) from tests/fuzz/seeds for FUZZ_SECONDS. The
+# corpus it grows stays in $(FUZZ_BUILD)/corpus for the next run; an input
+# that fails is saved in $(FUZZ_BUILD)/crashes/: fix the bug, then copy the
+# input to tests/fuzz/regressions/, which `make test` replays.
+fuzz: deps
+	CXX=clang++ cmake -S . -B $(FUZZ_BUILD) -DPOLYCUBE_FUZZ=ON -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="-O1 -gline-tables-only" \
+	  -DCMAKE_DISABLE_FIND_PACKAGE_OpenMP=ON --log-level=WARNING
+	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target polycube_fuzz
+	mkdir -p $(FUZZ_BUILD)/corpus $(FUZZ_BUILD)/crashes
+	for seed in tests/fuzz/seeds/*; do \
+	  case $$seed in *.off) format='\000';; *.obj) format='\001';; *) format='\002';; esac; \
+	  { printf "$$format"; cat "$$seed"; } > $(FUZZ_BUILD)/corpus/seed-$$(basename $$seed); \
+	done
+	@echo "Fuzzing for $(FUZZ_SECONDS) s (log: $(FUZZ_BUILD)/fuzz.log)"
+	@if UBSAN_OPTIONS=print_stacktrace=1 $(FUZZ_BUILD)/polycube_fuzz -max_total_time=$(FUZZ_SECONDS) \
+	     -max_len=4096 -timeout=30 -rss_limit_mb=4096 -print_final_stats=1 \
+	     -artifact_prefix=$(FUZZ_BUILD)/crashes/ $(FUZZ_BUILD)/corpus tests/fuzz/regressions \
+	     > $(FUZZ_BUILD)/fuzz.log 2>&1; then \
+	  grep -E '^#[0-9]+[[:space:]]+(INITED|DONE)|^Done|^stat::' $(FUZZ_BUILD)/fuzz.log; \
+	else tail -80 $(FUZZ_BUILD)/fuzz.log; ls -l $(FUZZ_BUILD)/crashes; exit 1; fi
+
 # Speed, memory and ratios against the paper-literal variant and a SciPy
 # reference, on real models and their ~1M-triangle refinements (not part of test).
 bench: build data
 	$(PYTHON) tests/benchmark/bench.py --build $(BUILD)
 
 clean:
-	rm -rf $(BUILD) dist addon/*.so
+	rm -rf $(BUILD) $(FUZZ_BUILD) dist addon/*.so

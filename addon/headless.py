@@ -11,7 +11,7 @@ text file with one label per face (-1..5), or with --labels auto from the
 automatic labeller (written to the objects, as the Auto Label operator does).
 --subdivide K deforms a subdivided copy `<name> polycube` of each object. The
 figures of each deformed object are printed; the exit status is non-zero if any
-object could not be deformed.
+object could not be deformed or any output written, and then no output is written.
 
 Labels are axes of each object's own (local) coordinates; mesh files are imported
 without axis conversion so they keep the coordinates written in the file.
@@ -37,9 +37,24 @@ _IMPORTERS = {  # newest operator first; later ones serve older Blender versions
 
 
 def main(argv):
+    """The exit status: 0 when every object was deformed and every output written, 1 when
+    not (and then no output is written), 2 for bad arguments or input, 3 for a bug."""
+    try:
+        return _run(argv)
+    except Exception as error:  # noqa: BLE001 - a traceback alone would exit Blender with status 0
+        import traceback
+        traceback.print_exc()
+        print(f"polycube: internal error: {error}", file=sys.stderr)
+        return 3
+
+
+def _run(argv):
     package = _load_package()
     args = _parse(argv, package.native_options)
     try:
+        most = package.native_options.MAX_REFINE_LEVELS
+        if not 0 <= args.subdivide <= most:
+            raise ValueError(f"--subdivide must be 0..{most}, got {args.subdivide}")
         targets = _load_input(args, package)
         if args.labels and args.labels != "auto":
             _apply_label_file(args.labels, targets, package)
@@ -60,7 +75,7 @@ def main(argv):
             start_frame=args.start_frame, subdivide=args.subdivide > 0,
             subdivide_levels=max(args.subdivide, 1), subdivide_scheme=args.scheme.upper())
     except RuntimeError as error:
-        # bpy turns the operator's error reports into this exception, "Error: ..." each.
+        # bpy turns the operators' error reports into this exception, "Error: ..." each.
         print(f"polycube: {str(error).strip().removeprefix('Error: ')}", file=sys.stderr)
         return 1
 
@@ -68,23 +83,52 @@ def main(argv):
     reports = {obj.name: package.report.load_report(obj) for obj in bpy.context.selected_objects
                if obj.type == 'MESH'}
     reports = {name: report for name, report in reports.items() if report is not None}
-    for report in reports.values():
-        _print_report(package, report)
-    if args.output:
-        _ensure_folder(args.output)
-        bpy.ops.wm.save_as_mainfile(filepath=os.path.abspath(args.output), check_existing=False)
-        print(f"Wrote {args.output}")
-    if args.report:
-        _ensure_folder(args.report)
-        with open(args.report, "w", encoding="utf-8") as file:
-            json.dump(reports, file, indent=2)
-        print(f"Wrote {args.report}")
-    if args.preview and reports:
-        _ensure_folder(args.preview)
-        package.preview.render_preview([bpy.data.objects[name] for name in reports],
-                                       os.path.abspath(args.preview))
-        print(f"Wrote {args.preview}")
-    return 0 if len(reports) == len(targets) else 1
+    try:
+        for report in reports.values():
+            _print_report(package, report)
+        sys.stdout.flush()
+    except OSError as error:  # the figures are a result too: > /dev/full is a failure
+        print(f"polycube: cannot write to standard output: {error.strerror or error}; nothing written",
+              file=sys.stderr)
+        return 1
+    if len(reports) != len(targets):
+        print(f"polycube: {len(targets) - len(reports)} of {len(targets)} objects could not be deformed; "
+              f"nothing written", file=sys.stderr)
+        return 1
+    try:
+        _write_outputs(args, reports, package)
+    except (ValueError, OSError) as error:
+        print(f"polycube: {error}", file=sys.stderr)
+        return 1
+    return 0
+
+
+def _write_outputs(args, reports, package):
+    """The .blend, the report and the preview, all or none (output_files.py)."""
+    written = []
+    with package.output_files.OutputFiles() as outputs:
+        if args.output:
+            temporary = outputs.temporary(args.output)
+            os.remove(temporary)  # over an existing file Blender would keep the empty one as .blend1
+            try:
+                bpy.ops.wm.save_as_mainfile(filepath=temporary, check_existing=False, copy=True)
+            except RuntimeError as error:
+                raise ValueError(f"cannot write {args.output}: {str(error).strip()}") from None
+            written.append(args.output)
+        if args.report:
+            with open(outputs.temporary(args.report), "w", encoding="utf-8") as file:
+                json.dump(reports, file, indent=2)
+            written.append(args.report)
+        if args.preview:
+            temporary = outputs.temporary(args.preview, suffix=".png")  # the render adds .png otherwise
+            package.preview.render_preview([bpy.data.objects[name] for name in reports], temporary)
+            if os.path.getsize(temporary) == 0:  # the render reports a failed write but does not raise
+                raise ValueError(f"cannot write {args.preview}: the preview render was not saved")
+            written.append(args.preview)
+        sys.stdout.flush()
+        outputs.commit()
+    for path in written:
+        print(f"Wrote {path}")
 
 
 def _parse(argv, native_options):
@@ -134,7 +178,8 @@ def _load_package():
         sys.modules[name] = module
         spec.loader.exec_module(module)
         module.register()
-    for submodule in ("report", "preview", "labels", "mesh_arrays", "native_options", "polycube_native"):
+    for submodule in ("report", "preview", "labels", "mesh_arrays", "native_options", "output_files",
+                      "polycube_native"):
         importlib.import_module(f"{name}.{submodule}")
     return sys.modules[name]
 
@@ -145,6 +190,8 @@ def _load_input(args, package):
         targets = [_demo_sphere(package)]
     else:
         path = os.path.abspath(args.input)
+        if os.path.isdir(path):
+            raise ValueError(f"{args.input} is a directory; --input takes a .blend, .obj, .ply, .stl or .off file")
         if not os.path.isfile(path):
             raise ValueError(f"no such file: {args.input}")
         extension = os.path.splitext(path)[1].lower()
@@ -160,6 +207,10 @@ def _load_input(args, package):
             bpy.context.scene.collection.objects.link(obj)
             targets = [obj]
         elif extension in _IMPORTERS:
+            if extension in (".obj", ".ply"):
+                # Blender's importers take what they can from a truncated or broken file;
+                # the native reader (the command-line program's) refuses it with the line at fault.
+                package.polycube_native.read_mesh(path)
             _remove_all_objects()
             _import(path, extension)
             targets = [obj for obj in bpy.context.scene.objects if obj.type == 'MESH']
@@ -208,14 +259,8 @@ def _demo_sphere(package):
 def _apply_label_file(path, targets, package):
     if len(targets) != 1:
         raise ValueError("--labels needs exactly one object; choose it with --objects")
-    import numpy as np
-    try:
-        values = np.loadtxt(path, dtype=np.int64, ndmin=1)
-    except ValueError:
-        raise ValueError(f"{path} must hold one integer label per line") from None
-    faces = len(targets[0].data.polygons)
-    if len(values) != faces:
-        raise ValueError(f"{path} has {len(values)} labels but '{targets[0].name}' has {faces} faces")
+    # The native reader, as the command-line program's --labels FILE: integers -1..5 only.
+    values = package.polycube_native.read_labels(path, len(targets[0].data.polygons))
     package.labels.write_label_attribute(targets[0].data, values)
 
 
@@ -233,11 +278,6 @@ def _print_report(package, report):
           f"write {seconds['write']:.3f}")
     for line in package.report.advice(report):
         print(f"  {line}")
-
-
-def _ensure_folder(path):
-    folder = os.path.dirname(os.path.abspath(path))
-    os.makedirs(folder, exist_ok=True)
 
 
 if __name__ == "__main__":

@@ -67,7 +67,8 @@ in Blender 3.x, face maps +X ... -Z"""
             try:
                 labels = automatic_labels(mesh, label_options(self))
             except ValueError as error:
-                self.report({'WARNING'}, failure(obj.name, "labelled", error))
+                # An error, not a warning: scripts (headless --labels auto) see it as RuntimeError.
+                self.report({'ERROR'}, failure(obj.name, "labelled", error))
                 continue
             self._write(obj, mesh, labels)
         return {'FINISHED'} if self._labelled else {'CANCELLED'}

@@ -107,7 +107,7 @@ class OBJECT_OT_polycube_deform(DeformSettings, bpy.types.Operator):
                 objects.append(obj)
         for obj in objects:
             if obj.type != 'MESH':
-                self._problems.append(f"Skipped '{obj.name}': it is a {obj.type.lower()}, not a mesh.")
+                self._problems.append(f"Skipped '{obj.name}': it is {_a(obj.type.lower())}, not a mesh.")
                 continue
             if obj.data.name in meshes:
                 self._problems.append(
@@ -227,6 +227,11 @@ def _select_copies(context, reports):
         if copy is not None:
             copy.select_set(True)
             context.view_layer.objects.active = copy
+
+
+def _a(noun):
+    """The noun with its indefinite article: 'an empty', 'a curve'."""
+    return ("an " if noun[:1] in "aeiou" else "a ") + noun
 
 
 def _summary(report):

@@ -10,7 +10,7 @@ from collections import namedtuple
 import bpy
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty
 
-from .native_options import DEFAULT_DETAIL, DEFAULT_VARIANT, variant_items
+from .native_options import DEFAULT_DETAIL, DEFAULT_VARIANT, MAX_REFINE_LEVELS, variant_items
 
 
 def _setting_names(cls):
@@ -82,7 +82,7 @@ class DeformSettings(LabelSettings):
         default=False)
     subdivide_levels: IntProperty(
         name="Levels", description="Subdivision levels: each one splits every face in four",
-        default=1, min=1, max=6)
+        default=1, min=1, max=MAX_REFINE_LEVELS, soft_max=min(6, MAX_REFINE_LEVELS))
     subdivide_scheme: EnumProperty(
         name="Scheme", description="How OpenSubdiv places the new vertices",
         items=(

@@ -6,6 +6,7 @@
 
 #include "cli/arguments.h"
 #include "cli/commands.h"
+#include "cli/flush_stdout.h"
 #include "cli/peak_memory.h"
 #include "cli/label_source.h"
 #include "labeller/auto_labels.h"
@@ -13,6 +14,7 @@
 #include "labels/nearest_labels.h"
 #include "io/deform_report.h"
 #include "io/labels_io.h"
+#include "io/output_files.h"
 #include "io/read_mesh.h"
 #include "io/write_mesh.h"
 
@@ -77,10 +79,19 @@ int deform_command(const std::vector<std::string>& args) {
   JsonWriter json = deform_report(mesh, result, options);
   json.add("peak_mib", peak_resident_mib());
   const std::string report = json.str();
-  if (arguments.has("output")) write_mesh(arguments.get("output", ""), result.positions, mesh.faces);
-  if (arguments.has("output-labels")) write_labels(arguments.get("output-labels", ""), result.labels);
-  if (arguments.has("report")) write_file_atomically(arguments.get("report", ""), report + "\n");
+  OutputFiles outputs;
+  if (arguments.has("output")) {
+    const std::string path = arguments.get("output", "");
+    outputs.stage(path, mesh_file_bytes(path, result.positions, mesh.faces));
+  }
+  if (arguments.has("output-labels")) {
+    const std::string path = arguments.get("output-labels", "");
+    outputs.stage(path, labels_file_text(path, result.labels));
+  }
+  if (arguments.has("report")) outputs.stage(arguments.get("report", ""), report + "\n");
   std::printf("%s\n", report.c_str());
+  flush_stdout();
+  outputs.commit();
   return 0;
 }
 

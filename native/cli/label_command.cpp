@@ -4,10 +4,12 @@
 
 #include "cli/arguments.h"
 #include "cli/commands.h"
+#include "cli/flush_stdout.h"
 #include "cli/label_source.h"
 #include "labeller/auto_labels.h"
 #include "labels/validate_labels.h"
 #include "io/labels_io.h"
+#include "io/output_files.h"
 #include "io/read_mesh.h"
 #include "io/write_mesh.h"
 
@@ -35,14 +37,21 @@ int label_command(const std::vector<std::string>& args) {
   Vertices straightened;
   const std::vector<int> labels = auto_labels(mesh, options, &straightened);
   warn_about_orientation(mesh, labels, false);  // labels follow the winding: an inward mesh gets inward labels
-  write_labels(arguments.get("output", ""), labels);
-  if (arguments.has("straightened")) write_mesh(arguments.get("straightened", ""), straightened, mesh.faces);
+  const std::string output = arguments.get("output", "");
+  OutputFiles outputs;
+  outputs.stage(output, labels_file_text(output, labels));
+  if (arguments.has("straightened")) {
+    const std::string path = arguments.get("straightened", "");
+    outputs.stage(path, mesh_file_bytes(path, straightened, mesh.faces));
+  }
   const LabelValidation v = validate_labels(mesh, labels);
   const size_t invalid = static_cast<size_t>(std::count_if(
       v.violations.begin(), v.violations.end(), [](const LabelViolation& x) { return makes_invalid(x.kind); }));
   std::printf("%d faces, %d charts, %d chart boundaries, %d corners, %zu violations, %zu realisability problems%s\n",
               mesh.faces.count(), v.charts, v.boundaries, v.corners, invalid, v.violations.size() - invalid,
               v.realisable() ? "" : " (run `polycube validate IN --labels LABELS.txt` to list them)");
+  flush_stdout();
+  outputs.commit();
   return 0;
 }
 

@@ -6,6 +6,7 @@
 #include <new>
 
 #include "cli/commands.h"
+#include "cli/flush_stdout.h"
 #include "mesh/mesh.h"
 
 namespace {
@@ -31,12 +32,23 @@ void print_usage(std::FILE* out) {
   std::fprintf(out, "Run `polycube COMMAND --help` for one command.\n");
 }
 
+// What a command printed must reach stdout, or the exit status says it did not.
+int finish(const char* program, int status) {
+  try {
+    polycube::flush_stdout();
+  } catch (const polycube::Error& e) {
+    std::fprintf(stderr, "%s: error: %s\n", program, e.what());
+    return 1;
+  }
+  return status;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
     print_usage(argc < 2 ? stderr : stdout);
-    return argc < 2 ? 2 : 0;
+    return argc < 2 ? 2 : finish("polycube", 0);
   }
   const std::string name = argv[1];
   const std::vector<std::string> args(argv + 2, argv + argc);
@@ -49,10 +61,12 @@ int main(int argc, char** argv) {
   }
   if (args.size() == 1 && (args[0] == "--help" || args[0] == "-h")) {
     std::printf("usage: %s", command->usage);
-    return 0;
+    return finish(("polycube " + name).c_str(), 0);
   }
   try {
-    return command->run(args);
+    const int status = command->run(args);
+    polycube::flush_stdout();
+    return status;
   } catch (const polycube::Error& e) {
     std::fprintf(stderr, "polycube %s: error: %s\n", name.c_str(), e.what());
     return 1;

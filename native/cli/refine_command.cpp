@@ -3,8 +3,10 @@
 
 #include "cli/arguments.h"
 #include "cli/commands.h"
+#include "cli/flush_stdout.h"
 #include "refine/refine.h"
 #include "io/labels_io.h"
+#include "io/output_files.h"
 #include "io/read_mesh.h"
 #include "io/write_mesh.h"
 
@@ -30,10 +32,13 @@ int refine_command(const std::vector<std::string>& args) {
       arguments.has("labels") ? read_labels(arguments.get("labels", ""), mesh.faces.count()) : std::vector<int>{};
   const Refined refined = refine(mesh, labels, levels, scheme);
   const std::string output = arguments.get("output", "");
-  write_mesh(output, refined.mesh.vertices, refined.mesh.faces);
-  if (!labels.empty()) write_labels(output + ".labels", refined.labels);
+  OutputFiles outputs;
+  outputs.stage(output, mesh_file_bytes(output, refined.mesh.vertices, refined.mesh.faces));
+  if (!labels.empty()) outputs.stage(output + ".labels", labels_file_text(output + ".labels", refined.labels));
   std::printf("{\"vertices\": %ld, \"faces\": %d}\n", static_cast<long>(refined.mesh.vertices.rows()),
               refined.mesh.faces.count());
+  flush_stdout();
+  outputs.commit();
   return 0;
 }
 

@@ -2,7 +2,9 @@
 #include <cstdio>
 
 #include "cli/commands.h"
+#include "cli/flush_stdout.h"
 #include "cli/use_input.h"
+#include "io/output_files.h"
 #include "io/write_mesh.h"
 #include "use/quad_remesh.h"
 
@@ -24,11 +26,15 @@ int remesh_command(const std::vector<std::string>& args) {
   QuadRemeshOptions options;
   options.edge_length = arguments.get_double("edge-length", 0.0, 0.0);
   const QuadRemesh remesh = quad_remesh(input.mesh, input.polycube, input.labels, options);
-  write_mesh(arguments.get("output", ""), remesh.mesh.vertices, remesh.mesh.faces);
+  const std::string output = arguments.get("output", "");
+  OutputFiles outputs;  // in place only once the figures reached stdout too
+  outputs.stage(output, mesh_file_bytes(output, remesh.mesh.vertices, remesh.mesh.faces));
   std::printf("{\"vertices\": %ld, \"quads\": %d, \"irregular_vertices\": %d, \"open_edges\": %d, "
               "\"grid_spacing\": %.9g}\n",
               static_cast<long>(remesh.mesh.vertices.rows()), remesh.mesh.faces.count(), remesh.irregular_vertices,
               remesh.open_edges, remesh.grid_spacing);
+  flush_stdout();
+  outputs.commit();
   return 0;
 }
 

@@ -2,7 +2,9 @@
 #include <cstdio>
 
 #include "cli/commands.h"
+#include "cli/flush_stdout.h"
 #include "cli/use_input.h"
+#include "io/output_files.h"
 #include "io/write_mesh.h"
 #include "use/polycube_uv.h"
 #include "use/uv_figures.h"
@@ -32,13 +34,17 @@ int uv_command(const std::vector<std::string>& args) {
   options.relax = arguments.has("relax") || arguments.has("merge");
   options.merge_slack = arguments.get_double("merge", -1.0, 0.0);
   const PolycubeUv uv = polycube_uv(input.mesh, input.polycube, input.labels, options);
-  write_obj_with_uvs(arguments.get("output", ""), input.mesh.vertices, input.mesh.faces, uv.uvs);
+  const std::string output = arguments.get("output", "");
+  OutputFiles outputs;  // in place only once the figures reached stdout too
+  outputs.stage(output, obj_with_uvs_bytes(output, input.mesh.vertices, input.mesh.faces, uv.uvs));
   const UvFigures figures = uv_figures(input.mesh, uv.uvs);
   std::printf(
       "{\"islands\": %d, \"angle_distortion\": %.6g, \"area_distortion\": %.6g, \"collapsed_area\": %.6g, "
       "\"flipped\": %d, \"seam_length\": %.6g}\n",
       uv.islands, figures.angle_distortion, figures.area_distortion, figures.collapsed_area, figures.flipped,
       figures.seam_length);
+  flush_stdout();
+  outputs.commit();
   return 0;
 }
 

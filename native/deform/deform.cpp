@@ -93,8 +93,8 @@ const char* variant_name(Variant variant) {
   return "robust";
 }
 
-DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, const DeformOptions& options,
-                    const IterationCallback& callback) {
+DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>& labels, const DeformOptions& options,
+                                const IterationCallback& callback) {
   check_input(mesh, &labels);
   if (options.iterations < 0) throw Error("the iteration limit must be 0 or more");
   if (!(options.tolerance_deg >= 0.0)) throw Error("the tolerance must be 0 or more degrees");

@@ -132,7 +132,14 @@ using IterationCallback = std::function<bool(int iteration, const Vertices& posi
 
 // Labels are per polygon face, -1..5. Throws Error on input check_input rejects
 // and when a linear solve fails.
+// Works in the unit box (unit_box.h): the same model at any scale gives the
+// same iterations and figures, and positions in the input's units.
 DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, const DeformOptions& options = {},
                     const IterationCallback& callback = {});
+
+// deform() itself, on a mesh already in the unit box (deform_any_scale.cpp
+// moves it there and back).
+DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>& labels,
+                                const DeformOptions& options, const IterationCallback& callback);
 
 }  // namespace polycube

@@ -8,7 +8,7 @@
 
 #include "mesh/mesh.h"
 #include "io/read_mesh.h"
-#include "io/write_mesh.h"
+#include "io/output_files.h"
 
 namespace polycube {
 namespace {
@@ -21,7 +21,11 @@ bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' |
 
 std::vector<int> read_labels(const std::string& path, int face_count) {
   if (face_count < 0) throw Error(path + ": cannot read labels for a negative face count");
-  const std::string data = read_file(path);
+  return parse_labels(path, read_file(path), face_count);
+}
+
+std::vector<int> parse_labels(const std::string& path, const std::string& data, int face_count) {
+  if (face_count < 0) throw Error(path + ": cannot read labels for a negative face count");
   std::vector<int> labels;
   labels.reserve(std::min<size_t>(face_count, data.size() / 2 + 1));
   long line = 1;
@@ -61,7 +65,7 @@ std::vector<int> read_labels(const std::string& path, int face_count) {
   return labels;
 }
 
-void write_labels(const std::string& path, const std::vector<int>& labels) {
+std::string labels_file_text(const std::string& path, const std::vector<int>& labels) {
   std::string out = std::string("# polycube face labels, one per face in face order: ") + kConvention + "\n";
   out.reserve(out.size() + labels.size() * 3);
   for (size_t f = 0; f < labels.size(); ++f) {
@@ -71,7 +75,11 @@ void write_labels(const std::string& path, const std::vector<int>& labels) {
     out += std::to_string(labels[f]);
     out += '\n';
   }
-  write_file_atomically(path, out);
+  return out;
+}
+
+void write_labels(const std::string& path, const std::vector<int>& labels) {
+  write_file_atomically(path, labels_file_text(path, labels));
 }
 
 }  // namespace polycube

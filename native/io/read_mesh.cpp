@@ -678,7 +678,16 @@ PolygonMesh read_ply(const std::string& path, const std::string& data) {
 
 }  // namespace
 
+void check_path(const std::string& path) {
+  if (path.find('\0') == std::string::npos) return;
+  std::string shown = path;
+  for (char& c : shown)
+    if (c == '\0') c = '?';
+  throw Error("the path '" + shown + "' contains a NUL character, which no file name can hold");
+}
+
 std::string read_file(const std::string& path) {
+  check_path(path);
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) fail(path, "is a directory, not a file");
   struct Closer {
@@ -701,14 +710,21 @@ std::string read_file(const std::string& path) {
 }
 
 PolygonMesh read_mesh(const std::string& path) {
+  check_path(path);
   std::string ext = lower(std::filesystem::path(path).extension().string());
   if (ext != ".off" && ext != ".obj" && ext != ".ply")
     fail(path, ext.empty() ? "has no file extension, expected .off, .obj or .ply"
                            : "unknown mesh format '" + ext + "', expected .off, .obj or .ply");
-  std::string data = read_file(path);
-  if (ext == ".ply") return read_ply(path, data);
-  std::string_view text = text_of(path, data);
-  return ext == ".off" ? read_off(path, text) : read_obj(path, text);
+  return parse_mesh(path, read_file(path));
+}
+
+PolygonMesh parse_mesh(const std::string& name, const std::string& data) {
+  const std::string ext = lower(std::filesystem::path(name).extension().string());
+  if (ext == ".ply") return read_ply(name, data);
+  std::string_view text = text_of(name, data);
+  if (ext == ".off") return read_off(name, text);
+  if (ext == ".obj") return read_obj(name, text);
+  fail(name, "unknown mesh format '" + ext + "', expected .off, .obj or .ply");
 }
 
 }  // namespace polycube

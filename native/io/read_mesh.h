@@ -20,8 +20,17 @@ namespace polycube {
 // indices are 0-based.
 PolygonMesh read_mesh(const std::string& path);
 
+// The same parsers over bytes in memory (the fuzz target, tests/fuzz): name
+// picks the format by its extension and names the data in messages.
+PolygonMesh parse_mesh(const std::string& name, const std::string& data);
+
 // The whole file as bytes. Throws Error naming the path when it cannot be
 // read. Shared with read_labels so both report missing files the same way.
 std::string read_file(const std::string& path);
+
+// Throws Error when path holds a NUL character: the system would see only
+// the part before it, and a message would print only that part. Shared with
+// the writers (output_files.h).
+void check_path(const std::string& path);
 
 }  // namespace polycube

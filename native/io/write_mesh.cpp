@@ -1,5 +1,5 @@
 // Mesh writers. Each format is built in memory and handed to
-// write_file_atomically in one piece: simple, fast (one system call), and a
+// write_file_atomically (output_files.h) in one piece: simple, fast (one system call), and a
 // failure midway (disk full) cannot leave a truncated mesh where a good one
 // was. The mesh is checked first, so we never write a file read_mesh would
 // reject.
@@ -7,13 +7,13 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <cstring>
 #include <filesystem>
+
+#include "io/output_files.h"
 
 namespace polycube {
 namespace {
@@ -146,51 +146,31 @@ std::string ply_bytes(const Vertices& v, const PolygonFaces& f) {
 
 }  // namespace
 
-void write_file_atomically(const std::string& path, std::string_view bytes) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  if (fs::is_directory(path, ec)) fail(path, "it is a directory");
-  const std::string tmp = path + ".tmp";
-  std::FILE* file = std::fopen(tmp.c_str(), "wb");
-  if (!file) {
-    int err = errno;
-    fs::path parent = fs::path(path).parent_path();
-    if (!parent.empty() && !fs::is_directory(parent, ec))
-      fail(path, "directory " + parent.string() + " does not exist");
-    fail(path, std::strerror(err));
-  }
-  bool ok = std::fwrite(bytes.data(), 1, bytes.size(), file) == bytes.size();
-  int err = errno;
-  // fclose flushes, so a full disk may only show here.
-  if (std::fclose(file) != 0 && ok) {
-    ok = false;
-    err = errno;
-  }
-  if (ok) fs::rename(tmp, path, ec);
-  if (!ok || ec) {
-    std::remove(tmp.c_str());
-    fail(path, ok ? ec.message() : std::strerror(err));
-  }
-}
-
-void write_mesh(const std::string& path, const Vertices& v, const PolygonFaces& f) {
+std::string mesh_file_bytes(const std::string& path, const Vertices& v, const PolygonFaces& f) {
   std::string ext = std::filesystem::path(path).extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   if (ext != ".obj" && ext != ".off" && ext != ".ply")
     fail(path, ext.empty() ? "no file extension, expected .obj, .off or .ply"
                            : "unknown mesh format '" + ext + "', expected .obj, .off or .ply");
   check_mesh(path, v, f);
-  write_file_atomically(path, ext == ".obj"   ? obj_text(v, f)
-                              : ext == ".off" ? off_text(v, f)
-                                              : ply_bytes(v, f));
+  return ext == ".obj" ? obj_text(v, f) : ext == ".off" ? off_text(v, f) : ply_bytes(v, f);
 }
 
-void write_obj_with_uvs(const std::string& path, const Vertices& v, const PolygonFaces& f, const CornerUvs& uvs) {
+void write_mesh(const std::string& path, const Vertices& v, const PolygonFaces& f) {
+  write_file_atomically(path, mesh_file_bytes(path, v, f));
+}
+
+std::string obj_with_uvs_bytes(const std::string& path, const Vertices& v, const PolygonFaces& f,
+                               const CornerUvs& uvs) {
   check_mesh(path, v, f);
   if (uvs.rows() != static_cast<Eigen::Index>(f.indices.size()))
     fail(path, std::to_string(uvs.rows()) + " UVs for " + std::to_string(f.indices.size()) + " face corners");
   if (!uvs.allFinite()) fail(path, "a UV coordinate is not finite");
-  write_file_atomically(path, obj_text(v, f, &uvs));
+  return obj_text(v, f, &uvs);
+}
+
+void write_obj_with_uvs(const std::string& path, const Vertices& v, const PolygonFaces& f, const CornerUvs& uvs) {
+  write_file_atomically(path, obj_with_uvs_bytes(path, v, f, uvs));
 }
 
 }  // namespace polycube

@@ -4,7 +4,6 @@
 #pragma once
 
 #include <string>
-#include <string_view>
 
 #include "mesh/mesh.h"
 
@@ -15,16 +14,19 @@ namespace polycube {
 // Throws Error with one sentence naming the path if the extension is
 // unknown, the mesh is inconsistent (index out of range, face with fewer
 // than 3 vertices, non-finite coordinate) or the file cannot be written.
-// An existing file at path is replaced only once the new one is complete.
+// Atomic (output_files.h): an existing file at path is replaced only once
+// the new one is complete, and a failure leaves nothing behind.
 void write_mesh(const std::string& path, const Vertices& v, const PolygonFaces& f);
 
 // An .obj with one `vt` per face corner (uvs: #corners by 2, faces.indices
 // order) and `f v/vt` corners, so UV seams survive. Same checks as write_mesh.
 void write_obj_with_uvs(const std::string& path, const Vertices& v, const PolygonFaces& f, const CornerUvs& uvs);
+// Its bytes, for OutputFiles::stage.
+std::string obj_with_uvs_bytes(const std::string& path, const Vertices& v, const PolygonFaces& f,
+                               const CornerUvs& uvs);
 
-// Writes bytes to path + ".tmp", then renames it over path, so a failure
-// never leaves a partial file behind. Throws Error naming the path. Shared
-// with write_labels.
-void write_file_atomically(const std::string& path, std::string_view bytes);
+// The bytes write_mesh would write, for OutputFiles::stage when a command
+// writes several files all or none. Throws the same errors, the write aside.
+std::string mesh_file_bytes(const std::string& path, const Vertices& v, const PolygonFaces& f);
 
 }  // namespace polycube

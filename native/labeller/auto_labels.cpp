@@ -13,6 +13,7 @@
 #include "labels/squeezed_triangles.h"
 #include "labeller/straighten.h"
 #include "mesh/triangulate.h"
+#include "mesh/unit_box.h"
 
 namespace polycube {
 namespace {
@@ -106,7 +107,9 @@ AutoLabelOptions AutoLabelOptions::with_detail(double detail) {
   return options;
 }
 
-std::vector<int> auto_labels(const PolygonMesh& mesh, const AutoLabelOptions& options, Vertices* straightened) {
+std::vector<int> auto_labels(const PolygonMesh& input, const AutoLabelOptions& options, Vertices* straightened) {
+  const UnitBoxMesh unit(input);  // scale independence (unit_box.h); `straightened` goes back below
+  const PolygonMesh& mesh = unit.mesh();
   check_input(mesh);
   if (!(options.compactness >= 0.0) || !std::isfinite(options.compactness))
     throw Error("compactness must be a finite number of at least 0");
@@ -148,7 +151,7 @@ std::vector<int> auto_labels(const PolygonMesh& mesh, const AutoLabelOptions& op
     }
     if (violation_score(adjacency, unsqueezed) <= violations) labels = std::move(unsqueezed);
   }
-  if (straightened) *straightened = std::move(straight.vertices);
+  if (straightened) *straightened = unit.box().from_unit(straight.vertices, mesh.vertices, input.vertices);
   return labels;
 }
 

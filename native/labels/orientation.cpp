@@ -6,17 +6,23 @@
 #include "mesh/check_input.h"
 #include "mesh/mesh_adjacency.h"
 #include "mesh/triangulate.h"
+#include "mesh/unit_box.h"
 
 namespace polycube {
 
 std::vector<int> flip_labels(const std::vector<int>& labels) {
   std::vector<int> flipped = labels;
-  for (int& label : flipped)
+  for (int& label : flipped) {
+    if (label < kUnlabelled || label > 5)
+      throw Error("label " + std::to_string(label) + " is outside -1..5 and has no opposite");
     if (label >= 0) label ^= 1;  // 0/1, 2/3, 4/5 are the opposite pairs
+  }
   return flipped;
 }
 
-Orientation orientation(const PolygonMesh& mesh, const std::vector<int>* labels) {
+Orientation orientation(const PolygonMesh& input, const std::vector<int>* labels) {
+  const UnitBoxMesh unit(input);  // scale independence (unit_box.h)
+  const PolygonMesh& mesh = unit.mesh();
   check_input(mesh, labels);
   const int face_count = mesh.faces.count();
   const MeshAdjacency adjacency = mesh_adjacency(mesh.faces, static_cast<int>(mesh.vertices.rows()));

@@ -33,6 +33,7 @@ Orientation orientation(const PolygonMesh& mesh, const std::vector<int>* labels 
 
 // Each label turned to its opposite axis (+X <-> -X, ...), -1 kept: the
 // labels for the other winding of the same surface.
+// Throws Error on a label outside -1..5.
 std::vector<int> flip_labels(const std::vector<int>& labels);
 
 }  // namespace polycube

@@ -204,6 +204,12 @@ std::vector<Move> candidate_moves(const MeshAdjacency& adjacency, const LabelEne
       }
       break;
     }
+    // Realisability is checked on a mesh (realisability.h); the repair works
+    // on the topological conditions, which the labeller validates without one.
+    case ViolationKind::kReversedChart:
+    case ViolationKind::kTurningPoint:
+    case ViolationKind::kSqueezedFaces:
+      break;
   }
   return moves;
 }

@@ -6,6 +6,7 @@
 #include "labels/realisability.h"
 #include "mesh/check_input.h"
 #include "mesh/triangulate.h"
+#include "mesh/unit_box.h"
 
 namespace polycube {
 
@@ -94,7 +95,9 @@ LabelValidation validate_labels(const MeshAdjacency& adjacency, const Charts& ch
   return result;
 }
 
-LabelValidation validate_labels(const PolygonMesh& mesh, const std::vector<int>& labels) {
+LabelValidation validate_labels(const PolygonMesh& input, const std::vector<int>& labels) {
+  const UnitBoxMesh unit(input);  // scale independence (unit_box.h)
+  const PolygonMesh& mesh = unit.mesh();
   check_input(mesh, &labels);
   int unlabelled = 0;
   const std::vector<int> filled = filled_labels(mesh, labels, &unlabelled);

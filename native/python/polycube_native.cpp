@@ -1,12 +1,19 @@
 // The Python face of the core: numpy arrays in and out, options as keyword
 // arguments, the GIL released while computing, every failure a ValueError
 // (bad input) or RuntimeError (a solve that broke down) with one clear sentence.
+//
+// Conversions are strict: an index or label array must hold integers (any
+// integer dtype) that fit, or the call raises TypeError / ValueError naming
+// the argument. Casting would turn index 2**32 + 1 into 1, or label 2.7 into
+// 2, and the call would then succeed on a mesh the caller never gave.
 #include <pybind11/functional.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <climits>
 #include <cstring>
+#include <type_traits>
 
 #include "labeller/auto_labels.h"
 #include "labels/axis.h"
@@ -17,8 +24,10 @@
 #include "deform/quality.h"
 #include "refine/refine.h"
 #include "mesh/triangulate.h"
+#include "mesh/unit_box.h"
 #include "labels/validate_labels.h"
 #include "io/deform_report.h"
+#include "io/labels_io.h"
 #include "io/labels_report.h"
 #include "io/read_mesh.h"
 #include "use/polycube_uv.h"
@@ -31,7 +40,8 @@ using namespace polycube;
 namespace {
 
 using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
-using IntArray = py::array_t<int, py::array::c_style | py::array::forcecast>;
+// Any array-like; checked and converted by to_ints.
+using IntArray = py::object;
 
 Vertices to_vertices(const DoubleArray& array, const char* name) {
   if (array.ndim() != 2 || array.shape(1) != 3)
@@ -43,16 +53,56 @@ Vertices to_vertices(const DoubleArray& array, const char* name) {
   return v;
 }
 
-std::vector<int> to_ints(const IntArray& array, const char* name) {
+// The values of a 1-D integer array, each within [low, high]; what is
+// allowed is said in `meaning` ("vertex indices 0..41").
+template <class T>
+std::vector<int> checked_ints(const py::array& array, const char* name, long long low, long long high,
+                              const std::string& meaning) {
+  const auto values = py::array_t<T, py::array::c_style | py::array::forcecast>::ensure(array);
+  std::vector<int> out(values.size());
+  for (py::ssize_t k = 0; k < values.size(); ++k) {
+    const T value = values.data()[k];
+    bool outside;
+    if constexpr (std::is_signed_v<T>)
+      outside = value < low || value > high;
+    else  // compared unsigned: a uint64 above 2**63 must not wrap to a negative
+      outside = high < 0 || value > static_cast<unsigned long long>(high) ||
+                (low > 0 && value < static_cast<unsigned long long>(low));
+    if (outside)
+      throw py::value_error(std::string(name) + "[" + std::to_string(k) + "] is " + std::to_string(value) +
+                            ", outside " + meaning);
+    out[k] = static_cast<int>(value);
+  }
+  return out;
+}
+
+std::vector<int> to_ints(const IntArray& object, const char* name, long long low = INT_MIN,
+                         long long high = INT_MAX, const std::string& meaning = "the int32 range") {
+  const py::array array = py::array::ensure(object);
+  if (!array) throw py::type_error(std::string(name) + " must be an array of integers");
   if (array.ndim() != 1) throw py::value_error(std::string(name) + " must be a flat (1-D) array");
-  return std::vector<int>(array.data(), array.data() + array.size());
+  if (array.size() == 0) return {};  // np.asarray([]) is float64: nothing to convert
+  const char kind = array.dtype().kind();
+  if (kind == 'i') return checked_ints<long long>(array, name, low, high, meaning);
+  if (kind == 'u') return checked_ints<unsigned long long>(array, name, low, high, meaning);
+  throw py::type_error(std::string(name) + " must hold integers, got dtype " +
+                       std::string(py::str(array.dtype())) +
+                       (kind == 'f' ? " (convert deliberately, e.g. np.rint(a).astype(np.int32))" : ""));
+}
+
+std::vector<int> to_labels(const IntArray& object, const char* name = "labels") {
+  return to_ints(object, name, -1, 5, "-1..5 (0..5 = +X, -X, +Y, -Y, +Z, -Z, -1 = unlabelled)");
 }
 
 PolygonMesh to_mesh(const DoubleArray& vertices, const IntArray& face_indices, const IntArray& face_sizes) {
   PolygonMesh mesh;
   mesh.vertices = to_vertices(vertices, "vertices");
-  mesh.faces.indices = to_ints(face_indices, "face_indices");
-  const std::vector<int> sizes = to_ints(face_sizes, "face_sizes");
+  const long long n = mesh.vertices.rows();
+  const std::string vertex_range =
+      n > 0 ? "the vertex indices 0.." + std::to_string(n - 1) : std::string("any vertex index: there are no vertices");
+  mesh.faces.indices = to_ints(face_indices, "face_indices", 0, n - 1, vertex_range);
+  const std::vector<int> sizes =
+      to_ints(face_sizes, "face_sizes", 3, INT_MAX, "3.. (every face needs at least 3 corners)");
   mesh.faces.offsets.resize(sizes.size() + 1);
   long total = 0;
   for (size_t f = 0; f < sizes.size(); ++f) {
@@ -91,7 +141,7 @@ py::dict deform_py(const DoubleArray& vertices, const IntArray& face_indices, co
                    const IntArray& labels, int iterations, double tolerance, const std::string& variant,
                    const std::optional<py::function>& callback) {
   PolygonMesh mesh = to_mesh(vertices, face_indices, face_sizes);
-  const std::vector<int> face_labels = to_ints(labels, "labels");
+  const std::vector<int> face_labels = to_labels(labels);
   DeformOptions options;
   options.iterations = iterations;
   options.tolerance_deg = tolerance;
@@ -104,7 +154,11 @@ py::dict deform_py(const DoubleArray& vertices, const IntArray& face_indices, co
       py::dict f = figures_dict(figures);
       f["iteration"] = iteration;
       const py::object answer = (*callback)(iteration, to_numpy(positions), f);
-      return answer.is_none() || answer.cast<bool>();
+      if (answer.is_none()) return true;
+      if (py::isinstance<py::bool_>(answer) || py::isinstance(answer, py::module_::import("numpy").attr("bool_")))
+        return py::cast<bool>(py::bool_(answer));
+      throw py::type_error("callback must return True (go on), False (stop) or None, got " +
+                           std::string(py::str(py::type::of(answer).attr("__name__"))));
     };
   }
   DeformResult result;
@@ -135,13 +189,22 @@ py::array_t<int> nearest_labels_py(const DoubleArray& vertices, const IntArray& 
 
 py::dict figures_py(const DoubleArray& input, const DoubleArray& output, const IntArray& face_indices,
                     const IntArray& face_sizes, const IntArray& labels) {
-  const PolygonMesh mesh = to_mesh(input, face_indices, face_sizes);
-  const Vertices out = to_vertices(output, "output_vertices");
-  if (out.rows() != mesh.vertices.rows())
-    throw py::value_error("output_vertices has " + std::to_string(out.rows()) + " rows but input_vertices has " +
-                          std::to_string(mesh.vertices.rows()));
-  std::vector<int> face_labels = to_ints(labels, "labels");
-  check_input(mesh, &face_labels);
+  const PolygonMesh given = to_mesh(input, face_indices, face_sizes);
+  const Vertices given_out = to_vertices(output, "output_vertices");
+  if (given_out.rows() != given.vertices.rows())
+    throw py::value_error("output_vertices has " + std::to_string(given_out.rows()) +
+                          " rows but input_vertices has " + std::to_string(given.vertices.rows()));
+  for (Eigen::Index v = 0; v < given_out.rows(); ++v)
+    if (!given_out.row(v).allFinite())
+      throw py::value_error("output_vertices[" + std::to_string(v) + "] is not finite: a NaN or infinite "
+                            "position has no figures");
+  std::vector<int> face_labels = to_labels(labels);
+  check_input(given, &face_labels);
+  // Both through the input's unit box (unit_box.h): the figures are ratios, which
+  // one similarity keeps, and raw squared lengths overflow above about 1e77.
+  const UnitBoxMesh unit(given);
+  const PolygonMesh& mesh = unit.mesh();
+  const Vertices out = unit.box().to_unit(given_out);
   const std::vector<int> nearest = nearest_labels(mesh);
   for (size_t f = 0; f < face_labels.size(); ++f)
     if (face_labels[f] == kUnlabelled) face_labels[f] = nearest[f];
@@ -155,7 +218,7 @@ py::dict figures_py(const DoubleArray& input, const DoubleArray& output, const I
 py::dict refine_py(const DoubleArray& vertices, const IntArray& face_indices, const IntArray& face_sizes,
                    const std::optional<IntArray>& labels, int levels, const std::string& scheme) {
   const PolygonMesh mesh = to_mesh(vertices, face_indices, face_sizes);
-  const std::vector<int> face_labels = labels ? to_ints(*labels, "labels") : std::vector<int>{};
+  const std::vector<int> face_labels = labels ? to_labels(*labels) : std::vector<int>{};
   const RefineScheme parsed = parse_refine_scheme(scheme);
   Refined refined;
   {
@@ -204,7 +267,7 @@ py::array_t<int> auto_labels_py(const DoubleArray& vertices, const IntArray& fac
 py::dict validate_labels_py(const DoubleArray& vertices, const IntArray& face_indices, const IntArray& face_sizes,
                             const IntArray& labels) {
   const PolygonMesh mesh = to_mesh(vertices, face_indices, face_sizes);
-  const std::vector<int> face_labels = to_ints(labels, "labels");
+  const std::vector<int> face_labels = to_labels(labels);
   LabelValidation validation;
   {
     py::gil_scoped_release release;
@@ -219,14 +282,18 @@ py::dict orientation_py(const DoubleArray& vertices, const IntArray& face_indice
                         const std::optional<IntArray>& labels) {
   const PolygonMesh mesh = to_mesh(vertices, face_indices, face_sizes);
   std::vector<int> face_labels;
-  if (labels) face_labels = to_ints(*labels, "labels");
+  if (labels) face_labels = to_labels(*labels);
   const Orientation o = orientation(mesh, labels ? &face_labels : nullptr);
   JsonWriter json;
   add_orientation(json, o, labels.has_value());
   return json_loads(json.str(0));
 }
 
-py::array_t<int> flip_labels_py(const IntArray& labels) { return to_int_array(flip_labels(to_ints(labels, "labels"))); }
+py::array_t<int> flip_labels_py(const IntArray& labels) { return to_int_array(flip_labels(to_labels(labels))); }
+
+py::array_t<int> read_labels_py(const std::string& path, int face_count) {
+  return to_int_array(read_labels(path, face_count));
+}
 
 // Uses of the polycube: its UV map and its quad remesh.
 Vertices polycube_positions(const DoubleArray& polycube, const PolygonMesh& mesh) {
@@ -325,6 +392,7 @@ PYBIND11_MODULE(polycube_native, m) {
   m.attr("DEFAULT_VARIANT") = variant_name(DeformOptions{}.variant);
   m.attr("DEFAULT_COMPACTNESS") = AutoLabelOptions{}.compactness;
   m.attr("DEFAULT_DETAIL") = 0.5;
+  m.attr("MAX_REFINE_LEVELS") = kMaxRefineLevels;
 
   m.def("deform", &deform_py, py::arg("vertices"), py::arg("face_indices"), py::arg("face_sizes"),
         py::arg("labels"), py::kw_only(), py::arg("iterations") = 100, py::arg("tolerance") = 0.5,
@@ -348,6 +416,9 @@ Returns {"vertices", "face_indices", "face_sizes", "labels" (None without input 
 every child face keeps its parent's label.)");
   m.def("read_mesh", &read_mesh_py, py::arg("path"),
         "Read an .off, .obj or .ply file: (vertices (n, 3), face_indices, face_sizes). Raises ValueError.");
+  m.def("read_labels", &read_labels_py, py::arg("path"), py::arg("face_count"),
+        "Read a labels file (one integer -1..5 per face, '#' comments), as `polycube deform --labels FILE`. "
+        "Raises ValueError naming the file and line.");
 
   m.def("auto_labels", &auto_labels_py, py::arg("vertices"), py::arg("face_indices"), py::arg("face_sizes"),
         py::kw_only(), py::arg("detail") = 0.5, py::arg("compactness") = py::none(), py::arg("repair") = true,

@@ -64,6 +64,30 @@ def test_non_mesh_object_alone():
     assert "polycube_report" not in camera.keys()
 
 
+def test_an_empty_object_is_named_with_its_article():
+    bpy.ops.object.empty_add()
+    empty = bpy.context.active_object
+    _one_sentence(deform_error(empty), f"'{empty.name}': it is an empty, not a mesh")
+
+
+def test_auto_label_failure_is_an_error_scripts_see():
+    # A warning with CANCELLED would pass silently in a script; an error raises.
+    empty = _object("Empty mesh")
+    select_only(empty)
+    try:
+        bpy.ops.object.polycube_auto_label()
+    except RuntimeError as error:
+        _one_sentence(str(error), "'Empty mesh'", "empty")
+    else:
+        raise AssertionError("Auto Label on an empty mesh reported no error")
+    assert "polycube_label" not in empty.data.attributes
+
+
+def test_subdivision_levels_go_as_far_as_the_native_refine():
+    levels = bpy.ops.object.polycube_deform.get_rna_type().properties["subdivide_levels"]
+    assert levels.hard_max == polycube.polycube_native.MAX_REFINE_LEVELS == 8
+
+
 def test_non_mesh_beside_a_mesh_is_skipped_and_the_mesh_deformed():
     sphere = labelled_sphere()
     bpy.ops.object.light_add(type='POINT')

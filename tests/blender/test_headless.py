@@ -252,4 +252,90 @@ def test_bad_input_gives_a_message_and_a_failing_status():
     assert short.returncode != 0 and "2 labels" in short.stderr
 
 
+
+def _files(folder):
+    return sorted(os.listdir(folder)) if os.path.isdir(folder) else None
+
+
+def _failing(done, status, message):
+    assert done.returncode == status, (done.returncode, done.stderr)
+    assert message in done.stderr, done.stderr
+    assert "Wrote" not in done.stdout, done.stdout
+
+
+def test_outputs_all_or_none():
+    folder = os.path.join(TMP, "outputs")
+    os.makedirs(folder, exist_ok=True)
+    out, js, png = (os.path.join(folder, name) for name in ("ball.blend", "ball.json", "ball.png"))
+    # The report cannot be written (its folder is a file): the .blend staged before it goes too.
+    with open(os.path.join(folder, "file"), "w") as file:
+        file.write("in the way")
+    _failing(_headless("--iterations", "5", "--output", out, "--report", os.path.join(folder, "file", "r.json")),
+             1, f"cannot write {os.path.join(folder, 'file', 'r.json')}: Not a directory")
+    assert _files(folder) == ["file"]
+    # Blender cannot save there: a non-zero status, not a traceback with status 0; the
+    # folder made for the report is removed again.
+    _failing(_headless("--iterations", "5", "--output", "/proc/x.blend", "--report",
+                       os.path.join(folder, "new", "r.json")), 1, "cannot write /proc/x.blend")
+    assert _files(folder) == ["file"]
+    _failing(_headless("--iterations", "5", "--report", js, "--preview", folder), 1,
+             f"cannot write {folder}: it is a directory")
+    assert _files(folder) == ["file"]
+    # An old file at a target keeps its contents on failure and is replaced on success.
+    with open(js, "w") as file:
+        file.write("old")
+    _failing(_headless("--iterations", "5", "--report", js, "--output", os.path.join(folder, "file", "x.blend")),
+             1, "Not a directory")
+    with open(js) as file:
+        assert file.read() == "old"
+    done = _headless("--iterations", "5", "--report", js, "--output", out, "--preview", png)
+    assert done.returncode == 0, done.stderr
+    assert _files(folder) == ["ball.blend", "ball.json", "ball.png", "file"]
+    with open(js) as file:
+        assert json.load(file)["Sphere"]["iterations"] == 5
+
+
+def test_standard_output_that_cannot_be_written_fails_and_writes_nothing():
+    folder = os.path.join(TMP, "full")
+    os.makedirs(folder, exist_ok=True)
+    with open("/dev/full", "w") as full:
+        done = subprocess.run(
+            [bpy.app.binary_path, "-b", "--factory-startup", "--python", HEADLESS, "--", "--iterations", "3",
+             "--report", os.path.join(folder, "r.json")],
+            stdout=full, stderr=subprocess.PIPE, text=True, timeout=600)
+    assert done.returncode == 1, done.stderr
+    assert "polycube: cannot write to standard output: No space left on device; nothing written" in done.stderr
+    assert _files(folder) == []
+
+
+def test_inputs_the_command_line_program_would_refuse():
+    folder = os.path.join(TMP, "refused")
+    os.makedirs(folder, exist_ok=True)
+    out = os.path.join(folder, "out.blend")
+    mesh = arrays(uv_sphere())
+    whole = os.path.join(folder, "whole.obj")
+    _write_obj(whole, mesh)
+    with open(whole) as file:
+        text = file.read()
+    truncated = os.path.join(folder, "truncated.obj")
+    with open(truncated, "w") as file:
+        file.write(text[: text.rindex("\nf ") + 5])  # the last face cut after one corner
+    _failing(_headless("--input", truncated, "--output", out), 2, "truncated.obj line")
+    _failing(_headless("--input", folder, "--output", out), 2, f"{folder} is a directory")
+    labels = os.path.join(folder, "float.labels")
+    np.savetxt(labels, np.full(len(mesh.face_sizes), 2.7), fmt="%.1f")
+    _failing(_headless("--input", whole, "--labels", labels, "--output", out), 2,
+             "line 1: expected an integer label, got '2.7'")
+    _failing(_headless("--input", whole, "--subdivide", "9", "--output", out), 2, "--subdivide must be 0..8, got 9")
+    # Auto Label failing (an object with no faces) fails the run instead of deforming without it.
+    empty = bpy.data.objects.new("Nothing", bpy.data.meshes.new("Nothing"))
+    bpy.context.scene.collection.objects.link(empty)
+    source = os.path.join(folder, "nothing.blend")
+    bpy.ops.wm.save_as_mainfile(filepath=source, copy=True)
+    bpy.data.objects.remove(empty)
+    _failing(_headless("--input", source, "--objects", "Nothing", "--labels", "auto", "--output", out), 1,
+             "'Nothing'")
+    assert _files(folder) == ["float.labels", "nothing.blend", "truncated.obj", "whole.obj"]
+
+
 run_tests(globals())

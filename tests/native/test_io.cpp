@@ -19,6 +19,7 @@
 
 #include "io/json_writer.h"
 #include "io/labels_io.h"
+#include "io/output_files.h"
 #include "io/read_mesh.h"
 #include "io/write_mesh.h"
 
@@ -174,6 +175,43 @@ TEST(IoWriteMesh, FailureLeavesExistingFileAndNoTemporary) {
   EXPECT_NE(message.find("vertex 99"), std::string::npos) << message;
   EXPECT_EQ(load(path), "v 0 0 0\n");
   EXPECT_FALSE(std::filesystem::exists(path + ".tmp"));
+}
+
+// The files in a fresh folder of the running test's own.
+std::vector<std::string> folder_files(const std::string& folder) {
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(folder)) names.push_back(entry.path().filename());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+TEST(IoOutputFiles, AllOrNone) {
+  const std::string folder = temp_path("outputs");
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder + "/taken");
+  std::ofstream(folder + "/old.txt") << "old";
+  {  // the second cannot be staged: neither appears, the old file keeps its contents
+    polycube::OutputFiles outputs;
+    outputs.stage(folder + "/new.txt", "new");
+    outputs.stage(folder + "/old.txt", "replaced");
+    EXPECT_NE(error_of([&] { outputs.stage(folder + "/taken", "x"); }).find("it is a directory"), std::string::npos);
+  }
+  EXPECT_EQ(folder_files(folder), (std::vector<std::string>{"old.txt", "taken"}));
+  EXPECT_EQ(load(folder + "/old.txt"), "old");
+  {  // staged but never committed (a later step failed): nothing either
+    polycube::OutputFiles outputs;
+    outputs.stage(folder + "/new.txt", "new");
+  }
+  EXPECT_EQ(folder_files(folder), (std::vector<std::string>{"old.txt", "taken"}));
+  polycube::OutputFiles outputs;
+  outputs.stage(folder + "/new.txt", "new");
+  outputs.stage(folder + "/old.txt", "replaced");
+  outputs.commit();
+  EXPECT_EQ(folder_files(folder), (std::vector<std::string>{"new.txt", "old.txt", "taken"}));
+  EXPECT_EQ(load(folder + "/old.txt"), "replaced");
+  EXPECT_NE(error_of([] { polycube::write_file_atomically(std::string("a\0b", 3), "x"); }).find("NUL"),
+            std::string::npos);
+  std::filesystem::remove_all(folder);
 }
 
 TEST(IoWriteMesh, ReplacesExistingFile) {

@@ -101,13 +101,84 @@ def test_bad_files_and_arguments_fail_cleanly(program, sphere_off, tmp_path, mak
     lines = result.stderr.strip().splitlines()
     assert len(lines) == 1, result.stderr
     assert words in lines[0]
-    assert not out.exists() and not (tmp_path / "out.obj.tmp").exists()
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(
+        ["sphere.off", "mesh.stl", "bad.off", "nan.off", "wrong_count.txt", "junk.txt"])
 
 
 def test_unwritable_output_leaves_nothing(program, sphere_off, tmp_path):
     result = run(program, "deform", sphere_off, "--iterations", 2, "--output", tmp_path / "no" / "dir" / "x.obj")
     assert result.returncode != 0 and "x.obj" in result.stderr
     assert not (tmp_path / "no").exists()
+
+
+def files_in(folder):
+    return sorted(p.name for p in folder.iterdir())
+
+
+@pytest.mark.parametrize("make_args, words", [
+    # A report that cannot be written: the mesh written before it must go too.
+    (lambda d, m: ["deform", m, "--output", d / "A.obj", "--report", d / "missing" / "r.json"],
+     "cannot write {d}/missing/r.json: directory {d}/missing does not exist"),
+    (lambda d, m: ["deform", m, "--output", d / "A.obj", "--report", d / "taken"],
+     "cannot write {d}/taken: it is a directory"),
+    (lambda d, m: ["deform", m, "--output", d / "taken.obj", "--report", d / "r.json"],
+     "cannot write {d}/taken.obj: it is a directory"),
+    (lambda d, m: ["deform", m, "--output", d / "A.obj", "--output-labels", d / "L.txt", "--report", d / "taken"],
+     "cannot write {d}/taken: it is a directory"),
+    (lambda d, m: ["refine", m, "--levels", 1, "--output", d / "R.obj", "--labels", d / "labels.txt"],
+     "cannot write {d}/R.obj.labels: it is a directory"),
+    (lambda d, m: ["label", m, "--output", d / "no" / "L.txt"],
+     "cannot write {d}/no/L.txt: directory {d}/no does not exist"),
+    (lambda d, m: ["deform", m, "--output", "x\0y.obj"], "contains a NUL character"),
+])
+def test_failed_write_leaves_no_file(program, native, sphere, sphere_off, tmp_path, make_args, words):
+    for folder in ("taken", "taken.obj", "R.obj.labels"):
+        (tmp_path / folder).mkdir()
+    (tmp_path / "labels.txt").write_text("0\n" * len(sphere[2]))
+    before = files_in(tmp_path)
+    try:
+        result = run(program, *make_args(tmp_path, sphere_off))
+    except ValueError:  # subprocess refuses the NUL itself; the module's reader must too
+        with pytest.raises(ValueError, match="contains a NUL character"):
+            native.read_mesh(str(sphere_off) + "\0.off")
+        return
+    assert result.returncode == 1
+    assert result.stderr.strip().splitlines() == [
+        f"polycube {make_args(tmp_path, sphere_off)[0]}: error: {words.format(d=tmp_path)}"]
+    assert files_in(tmp_path) == before
+
+
+@pytest.mark.parametrize("command", [
+    ["deform", "{m}", "--iterations", 2, "--output", "{d}/A.obj", "--report", "{d}/r.json"],
+    ["refine", "{m}", "--levels", 1, "--output", "{d}/R.obj", "--labels", "{d}/labels.txt"],
+    ["label", "{m}", "--output", "{d}/L.txt"],
+    ["validate", "{m}", "--labels", "nearest"],
+    ["uv", "{m}", "{d}/poly.off", "--output", "{d}/U.obj"],
+    ["remesh", "{m}", "{d}/poly.off", "--output", "{d}/Q.obj", "--edge-length", 0.2],
+    ["deform", "--help"],
+])
+def test_stdout_that_cannot_be_written_fails_and_leaves_nothing(program, sphere, sphere_off, tmp_path, command):
+    (tmp_path / "labels.txt").write_text("0\n" * len(sphere[2]))
+    assert run(program, "deform", sphere_off, "--output", tmp_path / "poly.off").returncode == 0
+    before = files_in(tmp_path)
+    args = [str(a).format(m=sphere_off, d=tmp_path) for a in command]
+    with open("/dev/full", "w") as full:
+        result = subprocess.run([program, *args], stdout=full, stderr=subprocess.PIPE, text=True, timeout=300)
+    assert result.returncode == 1
+    assert result.stderr.strip().endswith("error: cannot write to standard output: No space left on device")
+    assert files_in(tmp_path) == before
+
+
+def test_outputs_replace_old_files_only_on_success(program, sphere_off, tmp_path):
+    out, report = tmp_path / "A.obj", tmp_path / "r.json"
+    out.write_text("old mesh")
+    report.write_text("old report")
+    result = run(program, "deform", sphere_off, "--output", out, "--report", tmp_path / "missing" / "r.json")
+    assert result.returncode == 1 and out.read_text() == "old mesh"
+    result = run(program, "deform", sphere_off, "--iterations", 2, "--output", out, "--report", report)
+    assert result.returncode == 0 and json.loads(report.read_text())["iterations"] == 2
+    assert out.read_text().startswith("# polycube")
+    assert files_in(tmp_path) == ["A.obj", "r.json", "sphere.off"]
 
 
 def test_help(program):

@@ -117,7 +117,8 @@ def test_gil_is_released_while_solving(native):
     (lambda v, i, s, l: (np.zeros((0, 3)), i[:0], s[:0], l[:0]), "empty"),
     (lambda v, i, s, l: (v, i[:0], s[:0], l[:0]), "no faces"),
     (lambda v, i, s, l: (np.where(np.arange(len(v))[:, None] == 3, np.nan, v), i, s, l), "non-finite"),
-    (lambda v, i, s, l: (v, np.where(np.arange(len(i)) == 7, 10**6, i), s, l), "vertex index 1000000"),
+    (lambda v, i, s, l: (v, np.where(np.arange(len(i)) == 7, 10**6, i), s, l),
+     r"face_indices\[7\] is 1000000, outside the vertex indices 0\.\.481"),
     (lambda v, i, s, l: (v, i, s, np.where(np.arange(len(l)) == 2, 6, l)), r"outside -1\.\.5"),
     (lambda v, i, s, l: (v, i, s, l[:-1]), "labels for"),
     (lambda v, i, s, l: (v, i[:-1], s, l), "face_sizes add up"),
@@ -168,3 +169,81 @@ def test_face_lists_hold_every_id(native):
         ids = np.asarray(report[key])
         assert len(ids) == report[f"{key}_count"], key
         assert np.all(np.diff(ids) > 0), key
+
+
+# Strict conversion at the boundary: a value that would change in a cast is refused, naming the argument.
+@pytest.mark.parametrize("mutate, error, words", [
+    (lambda v, i, s, l: (v, i.astype(np.int64) + 2**32, s, l), ValueError,
+     r"face_indices\[0\] is 4294967296, outside the vertex indices 0\.\.481"),
+    (lambda v, i, s, l: (v, np.full(len(i), 2**63, dtype=np.uint64), s, l), ValueError,
+     r"face_indices\[0\] is 9223372036854775808, outside"),
+    (lambda v, i, s, l: (v, i - 0.1, s, l), TypeError, "face_indices must hold integers, got dtype float64"),
+    (lambda v, i, s, l: (v, i, s.astype(np.float32), l), TypeError, "face_sizes must hold integers"),
+    (lambda v, i, s, l: (v, i, s, l + 0.7), TypeError, "labels must hold integers, got dtype float64"),
+    (lambda v, i, s, l: (v, i, s, l.astype(bool)), TypeError, "labels must hold integers, got dtype bool"),
+    (lambda v, i, s, l: (v, i, s, np.where(np.arange(len(l)) == 3, 2**32 + 2, l)), ValueError,
+     r"labels\[3\] is 4294967298, outside -1\.\.5"),
+    (lambda v, i, s, l: (v, i, s, l.astype(np.uint8) + 250), ValueError, r"labels\[0\] is 25[0-5], outside -1\.\.5"),
+    (lambda v, i, s, l: (v, i, s, np.array(["a"] * len(l))), TypeError, "labels must hold integers"),
+    (lambda v, i, s, l: (v, i, s.astype(np.uint64) - 3, l), ValueError, r"face_sizes\[0\] is 0, outside 3\.\."),
+])
+@pytest.mark.parametrize("function", ["deform", "validate_labels", "refine", "figures"])
+def test_no_silent_conversion(native, sphere, mutate, error, words, function):
+    vertices, indices, sizes = sphere
+    labels = native.nearest_labels(vertices, indices, sizes)
+    v, i, s, l = mutate(vertices, indices, sizes, labels)
+    calls = {
+        "deform": lambda: native.deform(v, i, s, l, iterations=1),
+        "validate_labels": lambda: native.validate_labels(v, i, s, l),
+        "refine": lambda: native.refine(v, i, s, l),
+        "figures": lambda: native.figures(v, v, i, s, l),
+    }
+    with pytest.raises(error, match=words):
+        calls[function]()
+
+
+def test_integer_arrays_of_any_width_and_lists_are_taken(native, sphere):
+    vertices, indices, sizes = sphere
+    labels = native.nearest_labels(vertices, indices, sizes)
+    expected = native.validate_labels(vertices, indices, sizes, labels)
+    for dtype in (np.int16, np.int64, np.uint32, np.uint64):
+        assert native.validate_labels(vertices, indices.astype(dtype), sizes.astype(dtype),
+                                      labels.astype(np.int64)) == expected
+    assert native.validate_labels(vertices, list(indices), list(sizes), list(labels)) == expected
+
+
+def test_callback_must_return_a_bool(native, sphere):
+    vertices, indices, sizes = sphere
+    labels = native.nearest_labels(vertices, indices, sizes)
+    with pytest.raises(TypeError, match="callback must return True .go on., False .stop. or None, got str"):
+        native.deform(vertices, indices, sizes, labels, iterations=3, callback=lambda k, x, f: "yes")
+    stopped = native.deform(vertices, indices, sizes, labels, iterations=3, callback=lambda k, x, f: np.bool_(k < 2))
+    assert stopped["report"]["iterations"] == 2 and stopped["report"]["stopped"] is True
+
+
+def test_figures_refuse_non_finite_output(native, sphere):
+    vertices, indices, sizes = sphere
+    labels = native.nearest_labels(vertices, indices, sizes)
+    for bad in (np.nan, np.inf):
+        output = vertices.copy()
+        output[5, 1] = bad
+        with pytest.raises(ValueError, match=r"output_vertices\[5\] is not finite"):
+            native.figures(vertices, output, indices, sizes, labels)
+
+
+def test_flip_labels_checks_its_range(native):
+    assert list(native.flip_labels([0, 1, 2, 3, 4, 5, -1])) == [1, 0, 3, 2, 5, 4, -1]
+    with pytest.raises(ValueError, match=r"labels\[0\] is 9, outside -1\.\.5"):
+        native.flip_labels([9, 6, 100])
+
+
+def test_read_labels_and_nul_in_paths(native, tmp_path):
+    path = tmp_path / "l.txt"
+    path.write_text("0\n5\n-1\n")
+    assert list(native.read_labels(str(path), 3)) == [0, 5, -1]
+    path.write_text("0\n2.7\n-1\n")
+    with pytest.raises(ValueError, match=r"line 2: expected an integer label, got '2.7'"):
+        native.read_labels(str(path), 3)
+    for call in (lambda p: native.read_mesh(p), lambda p: native.read_labels(p, 3)):
+        with pytest.raises(ValueError, match=r"the path '.*l\.txt\?x\.off' contains a NUL character"):
+            call(str(path) + "\0x.off")

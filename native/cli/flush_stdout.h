@@ -1,0 +1,13 @@
+// Standard output is a result like any file: when it cannot be written (a
+// full disk, a closed pipe, > /dev/full) the command fails instead of
+// exiting 0 with the report lost.
+#pragma once
+
+namespace polycube {
+
+// Flushes stdout; throws Error saying why when it or an earlier write failed.
+// Commands call it before committing their files (output_files.h), so a
+// lost report leaves no files either; main calls it once more at the end.
+void flush_stdout();
+
+}  // namespace polycube
