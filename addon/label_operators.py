@@ -102,7 +102,7 @@ in Blender 3.x, face maps +X ... -Z"""
             return {'RUNNING_MODAL'}
         obj = bpy.data.objects.get(self._name)
         if self._call.error is not None:
-            self.report({'WARNING'}, failure(self._name, "labelled", self._call.error))
+            self.report({'ERROR'}, failure(self._name, "labelled", self._call.error))
         elif obj is None or obj.type != 'MESH' or len(obj.data.polygons) != len(self._call.result):
             self.report({'WARNING'}, f"'{self._name}' was not labelled: it changed while it was being labelled.")
         else:
@@ -118,7 +118,7 @@ in Blender 3.x, face maps +X ... -Z"""
             try:
                 yield obj, read_mesh_arrays(obj.data)
             except ValueError as error:
-                self.report({'WARNING'}, failure(obj.name, "labelled", error))
+                self.report({'ERROR'}, failure(obj.name, "labelled", error))
 
     def _next(self, context):
         self._name, self._mesh = self._pending.pop(0)
