@@ -6,7 +6,7 @@
 
 --input takes a .blend, a mesh file Blender imports (.obj, .ply, .stl) or an .off
 file; without it a demo model is used (a UV sphere with face maps by nearest
-axis). Labels come from the objects (DESIGN.md section 3), from --labels FILE, a
+axis). Labels come from the objects (docs/design.md section 3), from --labels FILE, a
 text file with one label per face (-1..5), or with --labels auto from the
 automatic labeller (written to the objects, as the Auto Label operator does).
 --subdivide K deforms a subdivided copy `<name> polycube` of each object. The

@@ -3,7 +3,7 @@
 from the sidebar, the face menus or the label pie menu (Shift Alt L).
 
 Written through `bmesh` (Edit Mode holds the mesh there) into the `polycube_label`
-attribute, which wins over face maps (DESIGN.md section 3). The first assignment
+attribute, which wins over face maps (docs/design.md section 3). The first assignment
 creates the attribute holding the labels the mesh had so far, so the other faces
 keep theirs. Shown label colors follow.
 """

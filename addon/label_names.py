@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""Which face-map names stand for which polycube label (DESIGN.md section 3)."""
+"""Which face-map names stand for which polycube label (docs/design.md section 3)."""
 
 from .polycube_native import LABEL_NAMES
 

@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """The label operators: Auto Label, Validate Labels and Label Colors.
 
-Labels are read and written as labels.py says (DESIGN.md section 3); every
+Labels are read and written as labels.py says (docs/design.md section 3); every
 operator is undoable and reports in one sentence per object.
 """
 

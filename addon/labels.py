@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""Per-face polycube labels as a Blender mesh stores them (DESIGN.md section 3).
+"""Per-face polycube labels as a Blender mesh stores them (docs/design.md section 3).
 
 Three stores, strongest first:
 - our own INT face attribute `polycube_label` (values -1..5);

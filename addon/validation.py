@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""Labels checked against the polycube conditions (DESIGN.md section 3): the
+"""Labels checked against the polycube conditions (docs/design.md section 3): the
 native validator's answer in words, and its figures kept on the object for the
 sidebar (which must not compute them while it draws).
 

@@ -1,4 +1,4 @@
-// The polycube deformation of DESIGN.md section 2: iterate "rotate every
+// The polycube deformation of docs/design.md section 2: iterate "rotate every
 // triangle's normal onto its label axis, then solve L x = b" until the largest
 // normal deviation is below the tolerance or the iteration limit is reached.
 #pragma once
@@ -16,7 +16,7 @@ namespace polycube {
 // whatever the weights, so both reach the same shapes; they differ in cost and
 // robustness.
 //
-// `robust` (the default) is ours, not the paper's (issue 6). Why the plain
+// `robust` (the default) is ours, not the paper's (docs/design.md sections 2.5-2.6). Why the plain
 // method folds and stalls on real models, measured (200 iterations):
 // - its step jumps: `fixed` turns faces over on its way even where it ends
 //   exact (B0: 4 faces at iteration 4; fandisk: 43, 9 stay; elephant: 428);

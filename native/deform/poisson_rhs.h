@@ -1,4 +1,4 @@
-// One iteration's right-hand side (DESIGN.md section 2): every triangle turns
+// One iteration's right-hand side (docs/design.md section 2): every triangle turns
 // its current normal onto its target axis with a rotation R_f, and each edge
 // (v, w) with weight c adds c R_f (x_v - x_w) to b_v and subtracts it from b_w
 // (the paper's equation (2) prints a minus between the terms; the gradient of

@@ -1,6 +1,6 @@
 // The report of a deformation run as JSON: the one place its keys are named,
 // so the command-line report, the Python module's dict and the Blender panel
-// agree (DESIGN.md section 4 for the figures).
+// agree (docs/design.md section 4 for the figures).
 #pragma once
 
 #include <string>

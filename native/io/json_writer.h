@@ -1,5 +1,5 @@
 // A small JSON builder for run reports (the quality figures and timings of
-// DESIGN.md section 4), so the command-line program needs no JSON library.
+// docs/design.md section 4), so the command-line program needs no JSON library.
 //
 //   JsonWriter json;                              // the root object is open
 //   json.add("mesh", "fandisk.off").add("converged", true);

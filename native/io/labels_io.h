@@ -1,6 +1,6 @@
 // Reads and writes per-face labels as a text file: one integer per face, in
-// face order (0..5 = +X,-X,+Y,-Y,+Z,-Z, -1 = unlabelled; DESIGN.md section
-// 3). Plain text so labels can be made by any script and fixed by hand.
+// face order (0..5 = +X,-X,+Y,-Y,+Z,-Z, -1 = unlabelled; docs/design.md section
+// 3.1). Plain text so labels can be made by any script and fixed by hand.
 #pragma once
 
 #include <string>

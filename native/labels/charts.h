@@ -1,4 +1,4 @@
-// Charts (DESIGN.md section 3): the connected sets of faces with one label,
+// Charts (docs/design.md section 3): the connected sets of faces with one label,
 // connected through shared edges (touching at a vertex only does not join
 // two faces), and how charts meet: along boundaries and at corners.
 #pragma once

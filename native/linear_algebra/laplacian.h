@@ -1,4 +1,4 @@
-// The cotangent Laplacian L of DESIGN.md section 2, with +c on the diagonal
+// The cotangent Laplacian L of docs/design.md section 2, with +c on the diagonal
 // (positive semidefinite for non-negative weights; libigl's cotmatrix is -L).
 //
 // Its sparsity pattern depends only on the triangles, so it is built once and

@@ -407,7 +407,7 @@ flipped_face_ids, relabelled_faces) hold every id, as int32 arrays. Raises Value
   m.def("nearest_labels", &nearest_labels_py, py::arg("vertices"), py::arg("face_indices"), py::arg("face_sizes"),
         "Label every face by the axis nearest its normal.");
   m.def("figures", &figures_py, py::arg("input_vertices"), py::arg("output_vertices"), py::arg("face_indices"),
-        py::arg("face_sizes"), py::arg("labels"), "The quality figures of output against input (DESIGN.md section 4).");
+        py::arg("face_sizes"), py::arg("labels"), "The quality figures of output against input (docs/design.md section 4).");
   m.def("refine", &refine_py, py::arg("vertices"), py::arg("face_indices"), py::arg("face_sizes"),
         py::arg("labels") = py::none(), py::kw_only(), py::arg("levels") = 1, py::arg("scheme") = "bilinear",
         R"(Subdivide uniformly with OpenSubdiv (scheme bilinear, loop or catmark; levels 1..8).

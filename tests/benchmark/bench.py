@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """`make bench`: speed and memory of the native solver on real models, with
-ratios measured in the same run (DESIGN.md, issue "Scale and speed").
+ratios measured in the same run (docs/design.md section 2.6, "Cost").
 
 For every model it runs, each in its own process (for its peak memory):
 - our default variant to the tolerance;

@@ -15,7 +15,7 @@ MESHES = ROOT / "build" / "data" / "meshes"
 SHARED = ROOT.parent / "shared" / "data"
 
 # (name, mesh, labels): labels "nearest", "auto" (the automatic labeller) or a
-# labels file. Issue 6's table: its models with nearest-axis and automatic
+# labels file. The corpus behind docs/design.md section 2.4: models with nearest-axis and automatic
 # labels, the published labelings, then other libcgal-demo models.
 LIBCGAL = ["fandisk", "elephant", "eight", "larger_sphere", "mesh_with_border", "cactus", "joint", "anchor",
            "double-torus-example"]

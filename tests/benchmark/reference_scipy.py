@@ -1,4 +1,4 @@
-"""The polycube iteration of DESIGN.md section 2 written the way a user would
+"""The polycube iteration of docs/design.md section 2 written the way a user would
 with NumPy and SciPy: the reference the benchmark compares the native solver
 against, and a second implementation the tests check it with.
 

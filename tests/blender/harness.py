@@ -183,7 +183,7 @@ def report(obj):
 
 
 def key_figures(obj, name, labels):
-    """The quality figures (DESIGN.md section 4) of a shape key, measured afresh."""
+    """The quality figures (docs/design.md section 4) of a shape key, measured afresh."""
     import polycube
     mesh = arrays(obj)
     return polycube.polycube_native.figures(mesh.vertices, key_coordinates(obj, name),

@@ -1,4 +1,4 @@
-"""Issue 4 in Blender: Auto Label (attribute and face maps, its own maps only),
+"""Labels in Blender: Auto Label (attribute and face maps, its own maps only),
 Validate Labels (exactly the offending faces selected), label colours, the deform
 operator's label source, selecting unconverged faces, and undo."""
 

@@ -39,7 +39,7 @@ def test_fandisk_shape_keys_and_figures():
     assert final["flipped_faces"] == result["flipped_faces"]
     assert abs(final["normal_deviation_mean_deg"] - result["normal_deviation_mean_deg"]) < 1e-3
     assert abs(final["edge_error"] - result["edge_error"]) < 1e-4
-    # Nearest-axis labels on fandisk ask for a few folds (DESIGN.md section 2), so
+    # Nearest-axis labels on fandisk ask for a few folds (docs/design.md section 2), so
     # the maximum stays high; all but a handful of faces reach their axis.
     assert final["normal_deviation_mean_deg"] < TOLERANCE, final
     assert final["normal_deviation_mean_deg"] < 0.05 * first["normal_deviation_mean_deg"]

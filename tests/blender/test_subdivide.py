@@ -1,4 +1,4 @@
-"""Issue 5 in Blender: the deform operator's "subdivide before" option works on a
+"""The deform operator's "subdivide before" option in Blender: it works on a
 new object `<name> polycube` (4^k faces, labels carried from each parent face),
 leaving the user's object, its vertex count and its shape keys alone."""
 

@@ -110,7 +110,7 @@ TEST_P(BothVariants, RealModelsWithBoundaryAndGenusStayFinite) {
   }
 }
 
-// The paper's method, factorised once, on the shapes it handles (DESIGN.md section 2).
+// The paper's method, factorised once, on the shapes it handles (docs/design.md section 2).
 TEST(DeformFixed, SphereEllipsoidAndTorusBecomePolycubes) {
   for (const auto& [name, mesh] : test_meshes::smooth_shapes()) {
     SCOPED_TRACE(name);
@@ -125,7 +125,7 @@ TEST(DeformFixed, SphereEllipsoidAndTorusBecomePolycubes) {
   }
 }
 
-// The default variant (issue 6's fold-free one) on the same shapes. The quad
+// The default variant (the fold-free robust one, docs/design.md section 2.6) on the same shapes. The quad
 // torus above, 48 x 24, stays about 3.8 degrees off with it: quads bent across
 // a polycube edge (see deform.h); this finer one converges.
 TEST(DeformDefault, SphereEllipsoidAndTorusBecomePolycubes) {

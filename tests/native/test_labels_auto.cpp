@@ -90,7 +90,7 @@ TEST(AutoLabels, ShapesThatAllowAPolycubeGetValidLabelsAndBecomeOne) {
     EXPECT_EQ(r.figures.flipped_faces, 0);
     if (name == "torus") {
       // The default (robust) variant does not yet converge on this torus with
-      // any labels, nearest-axis ones included (issue 6): the labels are shown
+      // any labels, nearest-axis ones included (docs/design.md section 2.6): the labels are shown
       // to allow a polycube with the fixed variant meanwhile.
       DeformOptions fixed;
       fixed.variant = Variant::kFixed;

@@ -103,7 +103,7 @@ inline void add_block(std::set<std::array<int, 3>>& voxels, std::array<int, 3> a
 }
 
 // The smooth shapes the plain method turns into polycubes with nearest-axis
-// labels (DESIGN.md section 2): a sphere, an axis-aligned ellipsoid, a torus.
+// labels (docs/design.md section 2): a sphere, an axis-aligned ellipsoid, a torus.
 inline std::vector<std::pair<std::string, PolygonMesh>> smooth_shapes(int torus_segments = 48, int torus_rings = 24) {
   return {{"sphere", uv_sphere(32, 16)},
           {"ellipsoid", uv_sphere(32, 16, Eigen::Vector3d(1.5, 1.0, 0.7))},

@@ -1,4 +1,4 @@
-"""Labels (issue 4): the automatic labeller, the validator and the orientation
+"""Labels (docs/design.md section 3): the automatic labeller, the validator and the orientation
 check, through the Python module and the command-line program."""
 import json
 import subprocess
@@ -78,32 +78,10 @@ def test_auto_labels_options_and_errors(native, sphere):
             native.auto_labels(*sphere, detail=bad)
 
 
-def _charts(indices, sizes, labels):
-    """Charts: faces with one label joined across shared edges."""
-    parent = list(range(len(sizes)))
-
-    def find(i):
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
-
-    offsets = np.concatenate([[0], np.cumsum(sizes)])
-    owner = {}
-    for f in range(len(sizes)):
-        corners = indices[offsets[f]:offsets[f + 1]]
-        for k in range(len(corners)):
-            edge = tuple(sorted((int(corners[k]), int(corners[(k + 1) % len(corners)]))))
-            g = owner.setdefault(edge, f)
-            if g != f and labels[g] == labels[f]:
-                parent[find(f)] = find(g)
-    return len({find(f) for f in range(len(sizes))})
-
-
 def test_detail_controls_how_many_charts(native, real_mesh):
     """Less detail, fewer charts: the one knob a user turns."""
     mesh = real_mesh("elephant")
-    counts = [_charts(mesh[1], mesh[2], native.auto_labels(*mesh, detail=d)) for d in (0.0, 0.5, 1.0)]
+    counts = [native.validate_labels(*mesh, native.auto_labels(*mesh, detail=d))["charts"] for d in (0.0, 0.5, 1.0)]
     assert counts[0] < counts[1] < counts[2], counts
 
 

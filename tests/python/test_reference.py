@@ -1,5 +1,5 @@
 """The native solver against the NumPy/SciPy reference (tests/benchmark):
-two independent implementations of DESIGN.md section 2 must agree."""
+two independent implementations of docs/design.md section 2 must agree."""
 import pathlib
 import sys
 
