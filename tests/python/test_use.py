@@ -7,7 +7,7 @@ import subprocess
 import numpy as np
 import pytest
 
-from conftest import SHARED_DATA
+from conftest import MESHES
 
 
 def run(program, *args):
@@ -144,7 +144,7 @@ def test_bad_input_gives_one_clear_line(program, fandisk, tmp_path, case, messag
     elif case == "not_polycube":
         args[1] = source
     elif case == "other_mesh":
-        args[1] = SHARED_DATA / "bone" / "surface.obj"
+        args[1] = MESHES / "eight.off"  # libcgal-demo, there whenever fandisk is
     result = run(program, "remesh", *args, "--output", out)
     assert result.returncode == 1
     assert message in result.stderr and result.stderr.count("\n") == 1, result.stderr
