@@ -218,7 +218,7 @@ DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>&
       // Phase 3 (flatten_charts.h): the exact polycube, every chart flat,
       // fold-free; then relaxed inside the flat charts.
       std::unique_ptr<ChartPlanes> planes;
-      bool relaxed = false;
+      bool relaxed = false, uncollapsed = false;
       int flatten_attempts = 0, last_attempt = 0;
       auto try_flatten = [&](int iteration) {
         if (planes || flatten_attempts >= kMaxFlattenAttempts) return;
@@ -284,11 +284,37 @@ DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>&
             found = next_state.flipped_count == 0 && count(next_state.collapsed) <= count(state.collapsed);
           }
           result.seconds.solve += phase.lap();
+          if (found) {
+            const double step_size = (next - x).rowwise().norm().maxCoeff() / diagonal;
+            x = std::move(next);
+            state = std::move(next_state);
+            relaxed = step_size < kFitStepTolerance;
+          }
+          // Once relaxed, the slivers collapsed to undo the first solve's
+          // folds may have room again: the same charts without those
+          // collapses, blended in as far as nothing folds and fewer faces
+          // stay collapsed (both shapes are flat on the same charts).
+          if ((!found || relaxed) && !uncollapsed && result.collapsed_on_purpose > 0) {
+            uncollapsed = true;
+            auto free_planes = std::make_unique<ChartPlanes>(n, triangles, triangle_labels);
+            const Vertices free_target = relax_flat_charts(mesh.vertices, x, triangles, triangle_labels, weights,
+                                                           laplacian.matrix(), shift, *free_planes, place);
+            result.factorizations += free_planes->factorizations();
+            for (int halving = 0; halving <= kMaxHalvings; ++halving) {
+              next = x + std::ldexp(1.0, -halving) * (free_target - x);
+              next_state = quality.face_states(next);
+              if (next_state.flipped_count == 0 && count(next_state.collapsed) < count(state.collapsed)) {
+                x = std::move(next);
+                state = std::move(next_state);
+                planes = std::move(free_planes);
+                found = true;
+                relaxed = false;
+                break;
+              }
+            }
+            result.seconds.factorize += phase.lap();
+          }
           if (!found) break;
-          const double step_size = (next - x).rowwise().norm().maxCoeff() / diagonal;
-          x = std::move(next);
-          state = std::move(next_state);
-          relaxed = step_size < kFitStepTolerance;
           if (!finish_iteration(iteration)) break;
           continue;
         }
