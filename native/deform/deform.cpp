@@ -209,10 +209,28 @@ DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>&
       // centroids, which per-vertex steps move a little.
       auto controlled_step = [&](const Vertices& target) {
         FoldFreeStep step = fold_free_step(x, state, target, triangles, quality, kMaxHalvings);
-        const Eigen::MatrixX3d drift = component_centroids(step.positions, parts) - centroids;
-        for (int v = 0; v < n; ++v)
-          if (parts.of_vertex[v] >= 0) step.positions.row(v) -= drift.row(parts.of_vertex[v]);
+        step.positions = place_components(step.positions, step.positions, parts, centroids);
         return step;
+      };
+
+      // Moves x towards a flat shape on the same charts (two such shapes blend
+      // into one), the whole step halved until nothing folds and no more
+      // faces, or with `fewer` fewer faces, are collapsed. Returns the step
+      // over the bounding box diagonal, negative when no step qualifies.
+      auto blend_towards = [&](const Vertices& target, bool fewer) {
+        const int collapsed = count(state.collapsed);
+        for (int halving = 0; halving <= kMaxHalvings; ++halving) {
+          Vertices next = x + std::ldexp(1.0, -halving) * (target - x);
+          FaceStates next_state = quality.face_states(next);
+          const int next_collapsed = count(next_state.collapsed);
+          if (next_state.flipped_count == 0 && (fewer ? next_collapsed < collapsed : next_collapsed <= collapsed)) {
+            const double size = (next - x).rowwise().norm().maxCoeff() / diagonal;
+            x = std::move(next);
+            state = std::move(next_state);
+            return size;
+          }
+        }
+        return -1.0;
       };
 
       // Phase 3 (flatten_charts.h): the exact polycube, every chart flat,
@@ -275,21 +293,10 @@ DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>&
           // even a short step would, or once steps are small.
           const Vertices target = relax_flat_charts(mesh.vertices, x, triangles, triangle_labels, weights,
                                                     laplacian.matrix(), shift, *planes, place);
-          Vertices next;
-          FaceStates next_state;
-          bool found = false;
-          for (int halving = 0; halving <= kMaxHalvings && !found; ++halving) {
-            next = x + std::ldexp(1.0, -halving) * (target - x);
-            next_state = quality.face_states(next);
-            found = next_state.flipped_count == 0 && count(next_state.collapsed) <= count(state.collapsed);
-          }
+          const double step_size = blend_towards(target, false);
+          bool found = step_size >= 0.0;
+          if (found) relaxed = step_size < kFitStepTolerance;
           result.seconds.solve += phase.lap();
-          if (found) {
-            const double step_size = (next - x).rowwise().norm().maxCoeff() / diagonal;
-            x = std::move(next);
-            state = std::move(next_state);
-            relaxed = step_size < kFitStepTolerance;
-          }
           // Once relaxed, the slivers collapsed to undo the first solve's
           // folds may have room again: the same charts without those
           // collapses, blended in as far as nothing folds and fewer faces
@@ -300,17 +307,10 @@ DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>&
             const Vertices free_target = relax_flat_charts(mesh.vertices, x, triangles, triangle_labels, weights,
                                                            laplacian.matrix(), shift, *free_planes, place);
             result.factorizations += free_planes->factorizations();
-            for (int halving = 0; halving <= kMaxHalvings; ++halving) {
-              next = x + std::ldexp(1.0, -halving) * (free_target - x);
-              next_state = quality.face_states(next);
-              if (next_state.flipped_count == 0 && count(next_state.collapsed) < count(state.collapsed)) {
-                x = std::move(next);
-                state = std::move(next_state);
-                planes = std::move(free_planes);
-                found = true;
-                relaxed = false;
-                break;
-              }
+            if (blend_towards(free_target, true) >= 0.0) {
+              planes = std::move(free_planes);
+              found = true;
+              relaxed = false;
             }
             result.seconds.factorize += phase.lap();
           }

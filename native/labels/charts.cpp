@@ -65,4 +65,10 @@ std::vector<int> charts_at_vertex(const MeshAdjacency& adjacency, const Charts& 
   return result;
 }
 
+std::vector<std::vector<int>> chart_faces(const Charts& charts) {
+  std::vector<std::vector<int>> faces(charts.count());
+  for (int f = 0; f < static_cast<int>(charts.of_face.size()); ++f) faces[charts.of_face[f]].push_back(f);
+  return faces;
+}
+
 }  // namespace polycube

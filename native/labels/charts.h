@@ -23,6 +23,9 @@ struct Charts {
 // deterministic and stable under relabelling elsewhere.
 Charts charts(const MeshAdjacency& adjacency, const std::vector<int>& labels);
 
+// The faces of each chart, increasing.
+std::vector<std::vector<int>> chart_faces(const Charts& charts);
+
 // One pair of charts that share at least one edge: a chart boundary.
 struct ChartBoundary {
   std::array<int, 2> charts;  // smaller first

@@ -16,24 +16,18 @@ void sort_unique(std::vector<int>& values) {
   values.erase(std::unique(values.begin(), values.end()), values.end());
 }
 
-std::vector<std::vector<int>> faces_of_charts(const Charts& charts) {
-  std::vector<std::vector<int>> faces(charts.count());
-  for (int f = 0; f < static_cast<int>(charts.of_face.size()); ++f) faces[charts.of_face[f]].push_back(f);
-  return faces;
-}
-
 }  // namespace
 
 void check_realisability(const PolygonMesh& mesh, const MeshAdjacency& adjacency, const Charts& charts,
                          const std::vector<int>& labels, std::vector<LabelViolation>& violations) {
-  const std::vector<std::vector<int>> chart_faces = faces_of_charts(charts);
+  const std::vector<std::vector<int>> faces_of_chart = chart_faces(charts);
 
   // Reversed charts: the sum of Newell normals is twice the area-weighted mean normal.
   for (int c = 0; c < charts.count(); ++c) {
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    for (int f : chart_faces[c]) sum += newell_normal(mesh.vertices, mesh.faces, f);
+    for (int f : faces_of_chart[c]) sum += newell_normal(mesh.vertices, mesh.faces, f);
     if (sum.dot(label_axis(charts.label[c])) < 0.0)
-      violations.push_back({ViolationKind::kReversedChart, c, charts.label[c], {}, -1, chart_faces[c]});
+      violations.push_back({ViolationKind::kReversedChart, c, charts.label[c], {}, -1, faces_of_chart[c]});
   }
 
   // Turning points, boundary by boundary; each edge's direction as the first

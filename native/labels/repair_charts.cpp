@@ -294,12 +294,11 @@ struct Greedy {
 std::vector<int> Greedy::run(std::vector<int> labels, int& score, int max_moves, size_t keep,
                              std::vector<Stuck>* stuck) {
   const int vertex_count = static_cast<int>(adjacency.vertex_offsets.size()) - 1;
-  const int face_count = static_cast<int>(labels.size());
   for (int round = 0; round < max_moves && score > 0 && budget > 0; ++round) {
     const Charts ch = charts(adjacency, labels);
     const LabelValidation validation = validate_labels(adjacency, ch, vertex_count);
-    std::vector<std::vector<int>> chart_faces(ch.count()), neighbours(ch.count());
-    for (int f = 0; f < face_count; ++f) chart_faces[ch.of_face[f]].push_back(f);
+    const std::vector<std::vector<int>> faces_of_chart = chart_faces(ch);
+    std::vector<std::vector<int>> neighbours(ch.count());
     for (const ChartBoundary& b : chart_boundaries(adjacency, ch)) {
       neighbours[b.charts[0]].push_back(b.charts[1]);
       neighbours[b.charts[1]].push_back(b.charts[0]);
@@ -321,7 +320,7 @@ std::vector<int> Greedy::run(std::vector<int> labels, int& score, int max_moves,
       int best_score = score;
       double best_cost = 0.0;
       std::vector<int> best;
-      for (const Move& move : candidate_moves(adjacency, energy, labels, face_edges, ch, chart_faces, neighbours, v)) {
+      for (const Move& move : candidate_moves(adjacency, energy, labels, face_edges, ch, faces_of_chart, neighbours, v)) {
         if (move.faces.empty() || move.label < 0 || budget-- <= 0) continue;
         std::vector<int> candidate = move.result.empty() ? labels : move.result;
         for (int f : move.result.empty() ? move.faces : std::vector<int>{}) {

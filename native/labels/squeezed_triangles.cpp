@@ -55,15 +55,20 @@ int unsqueeze_labels(int vertex_count, const Triangles& triangles, const std::ve
   const TriangleIncidence incidence(vertex_count, triangles);
   std::vector<int> triangle_labels(triangles.rows());
   std::vector<char> changed_face(labels.size(), 0);
-  auto count_squeezed = [&](const std::vector<int>& face_labels) {
+  // The planes of a labeling (triangle_labels then holds it) and how many triangles they squeeze.
+  auto planes_of = [&](const std::vector<int>& face_labels) {
     for (Eigen::Index t = 0; t < triangles.rows(); ++t) triangle_labels[t] = face_labels[face_of_triangle[t]];
+    return axis_planes(vertex_count, triangles, triangle_labels);
+  };
+  auto count_squeezed = [&](const std::array<std::vector<int>, 3>& planes) {
     int squeezed = 0;
-    for (char c : squeezed_triangles(vertex_count, triangles, triangle_labels)) squeezed += c;
+    for (Eigen::Index t = 0; t < triangles.rows(); ++t)
+      squeezed += squeezing_axis(planes, triangles, t, triangle_labels[t]) >= 0;
     return squeezed;
   };
-  int squeezed = count_squeezed(labels);
+  auto planes = planes_of(labels);
+  int squeezed = count_squeezed(planes);
   for (int round = 0; round < max_rounds && squeezed > 0; ++round) {
-    const auto planes = axis_planes(vertex_count, triangles, triangle_labels);
     // Decide every move from one state, then apply them together: the
     // result does not depend on the order of the triangles.
     std::vector<std::pair<int, int>> moves;
@@ -94,12 +99,14 @@ int unsqueeze_labels(int vertex_count, const Triangles& triangles, const std::ve
     // face can lie on a chart boundary, moves would otherwise flood charts.
     std::vector<int> next = labels;
     for (const auto& [face, label] : moves) next[face] = label;
-    const int next_squeezed = count_squeezed(next);
+    auto next_planes = planes_of(next);
+    const int next_squeezed = count_squeezed(next_planes);
     if (next_squeezed >= squeezed) break;
-    squeezed = next_squeezed;
     for (const auto& [face, label] : moves)
       if (labels[face] != label) changed_face[face] = 1;
     labels = std::move(next);
+    planes = std::move(next_planes);
+    squeezed = next_squeezed;
   }
   int changed = 0;
   for (char c : changed_face) changed += c;

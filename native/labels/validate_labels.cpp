@@ -58,10 +58,7 @@ LabelValidation validate_labels(const MeshAdjacency& adjacency, const Charts& ch
   std::vector<std::vector<int>> faces_of_chart;
   for (int c = 0; c < charts.count(); ++c) {
     if (neighbours[c].size() >= 4) continue;
-    if (faces_of_chart.empty()) {
-      faces_of_chart.resize(charts.count());
-      for (int f = 0; f < static_cast<int>(charts.of_face.size()); ++f) faces_of_chart[charts.of_face[f]].push_back(f);
-    }
+    if (faces_of_chart.empty()) faces_of_chart = chart_faces(charts);
     LabelViolation v{ViolationKind::kTooFewNeighbours, c, charts.label[c], neighbours[c], -1, faces_of_chart[c]};
     std::sort(v.others.begin(), v.others.end());
     result.violations.push_back(std::move(v));

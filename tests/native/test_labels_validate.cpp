@@ -199,13 +199,14 @@ TEST(ValidateLabels, BoundaryThatDoublesBackIsATurningPoint) {
   EXPECT_TRUE(v.valid());
   ASSERT_EQ(count_kind(v, ViolationKind::kTurningPoint), 1);
   EXPECT_FALSE(v.realisable());
-  for (const LabelViolation& violation : v.violations)
-    if (violation.kind == ViolationKind::kTurningPoint)
-      for (int f : violation.faces) {  // along the arm's right side, x = 4, y in [2, 5]
-        const Eigen::Vector3d c = centroid(box.mesh, f);
-        EXPECT_NEAR(c.x(), 4.0, 0.5 + 1e-9);
-        EXPECT_GT(c.y(), 2.0);
-      }
+  for (const LabelViolation& violation : v.violations) {
+    if (violation.kind != ViolationKind::kTurningPoint) continue;
+    for (int f : violation.faces) {  // along the arm's right side, x = 4, y in [2, 5]
+      const Eigen::Vector3d c = centroid(box.mesh, f);
+      EXPECT_NEAR(c.x(), 4.0, 0.5 + 1e-9);
+      EXPECT_GT(c.y(), 2.0);
+    }
+  }
 }
 
 // A +Y face whose three corners lie on the top (+Z) plane: the top chart and
@@ -220,8 +221,11 @@ TEST(ValidateLabels, FaceWithAllCornersOnAnotherChartsPlaneIsSqueezed) {
   relabel(box, middle, kPY);
   const LabelValidation v = validate_labels(box.mesh, box.labels);
   ASSERT_EQ(count_kind(v, ViolationKind::kSqueezedFaces), 1);
-  for (const LabelViolation& violation : v.violations)
-    if (violation.kind == ViolationKind::kSqueezedFaces) EXPECT_EQ(violation.faces, middle);
+  for (const LabelViolation& violation : v.violations) {
+    if (violation.kind == ViolationKind::kSqueezedFaces) {
+      EXPECT_EQ(violation.faces, middle);
+    }
+  }
 }
 
 TEST(ValidateLabels, RejectsBadLabels) {
