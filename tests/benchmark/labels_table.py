@@ -253,6 +253,13 @@ def run_model(name, path, program, out, extra):
     return row
 
 
+def model_path(name):
+    """A development-set model, another libcgal-demo model by name, or a mesh file."""
+    if name in MODELS:
+        return MODELS[name]
+    return MESHES / f"{name}.off" if (MESHES / f"{name}.off").exists() else pathlib.Path(name)
+
+
 def run_guarded(name, *args):
     try:
         return run_model(name, *args)
@@ -262,7 +269,8 @@ def run_guarded(name, *args):
 
 COLUMNS = [("model", "{model}"), ("faces", "{faces}"), ("charts", "{charts}"), ("exact", "{exact}"),
            ("good", "{good}"), ("max°", "{max_deg:.2f}"), ("max° given", "{max_deg_given:.2f}"),
-           ("flipped", "{flipped}"), ("folded in→out", "{folded_in}→{folded_out}"),
+           ("flipped", "{flipped}"), ("flipped given", "{flipped_given}"),
+           ("folded in→out", "{folded_in}→{folded_out}"),
            ("collapsed area %", "{collapsed_area_pct:.2f}"), ("collapsed faces %", "{collapsed_faces_pct:.2f}"),
            ("edge err", "{edge_error:.3f}"), ("area err", "{area_error:.3f}"), ("relabelled", "{relabelled}"),
            ("iters", "{iterations}"), ("flat at", "{flat_at}"), ("s label", "{s_label:.1f}"),
@@ -271,7 +279,8 @@ COLUMNS = [("model", "{model}"), ("faces", "{faces}"), ("charts", "{charts}"), (
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--models", default=",".join(MODELS))
+    parser.add_argument("--models", default=",".join(MODELS),
+                        help="names from the development set, other libcgal-demo names, or mesh paths")
     parser.add_argument("--program", default=str(ROOT / "build" / "polycube"))
     parser.add_argument("--out", default=str(ROOT / "build" / "labels_table"))
     parser.add_argument("--jobs", type=int, default=1)
@@ -285,8 +294,8 @@ def main():
     print("|" + "---|" * len(COLUMNS), flush=True)
     rows = []
     with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
-        futures = [pool.submit(run_guarded, n, MODELS[n], args.program, pathlib.Path(args.out), args.label_args)
-                   for n in names]
+        futures = [pool.submit(run_guarded, pathlib.Path(n).stem, model_path(n), args.program, pathlib.Path(args.out),
+                               args.label_args) for n in names]
         for future in futures:
             row = future.result()
             rows.append(row)
