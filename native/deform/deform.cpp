@@ -20,6 +20,7 @@
 #include "deform/poisson_rhs.h"
 #include "linear_algebra/sparse_cholesky.h"
 #include "deform/rotated_edges_rhs.h"
+#include "deform/untangle_flat_charts.h"
 #include "mesh/triangulate.h"
 
 namespace polycube {
@@ -182,6 +183,7 @@ DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>&
     return true;
   };
 
+  int untangled_at = 0;  // the iteration whose positions were untangled
   // A solve that breaks down after some iterations (the paper's `current`
   // variant on armadillo: its triangles degenerate until the Laplacian is
   // singular) ends the run with what was done, not with nothing.
@@ -236,7 +238,7 @@ DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>&
       // Phase 3 (flatten_charts.h): the exact polycube, every chart flat,
       // fold-free; then relaxed inside the flat charts.
       std::unique_ptr<ChartPlanes> planes;
-      bool relaxed = false, uncollapsed = false;
+      bool relaxed = false, uncollapsed = false, untangle_tried = false;
       int flatten_attempts = 0, last_attempt = 0;
       auto try_flatten = [&](int iteration) {
         if (planes || flatten_attempts >= kMaxFlattenAttempts) return;
@@ -272,6 +274,26 @@ DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>&
           result.labels = std::move(moved);
           triangle_labels = std::move(moved_triangles);
           flat = std::move(other);
+        }
+        if (!flat.found && flat.first_positions.size() > 0) {
+          // Refused: the linear solve folds or collapses too much. Its
+          // first, global solution is flat on the same charts: untangled
+          // inside them (untangle_flat_charts.h) it may have room for all.
+          const UntangledCharts untangled =
+              untangle_flat_charts(mesh.vertices, flat.first_positions, triangles, triangle_labels);
+          Vertices opened = place(untangled.positions);
+          FaceStates opened_state = quality.face_states(opened);
+          const double collapsed_area = quality.collapsed_area_fraction(opened_state);
+          result.seconds.solve += phase.lap();
+          if (opened_state.flipped_count == 0 && collapsed_area <= kMaxCollapsedAreaFraction &&
+              quality.measure(opened, false).folded_edges <= result.input_folded_edges) {
+            flat.positions = std::move(opened);
+            flat.states = std::move(opened_state);
+            flat.planes = std::make_unique<ChartPlanes>(n, triangles, triangle_labels);
+            flat.found = true;
+            result.untangled = true;
+            untangled_at = iteration;
+          }
         }
         if (!flat.found) return;
         x = std::move(flat.positions);
@@ -313,6 +335,27 @@ DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>&
               relaxed = false;
             }
             result.seconds.factorize += phase.lap();
+          }
+          // Relaxed, some triangles may still be collapsed: opened inside
+          // their charts (untangle_flat_charts.h), kept when nothing turns
+          // over, fewer are collapsed and no more edges fold; then relaxed
+          // again, as far as that collapses nothing.
+          if ((!found || relaxed) && !untangle_tried && count(state.collapsed) > 0) {
+            untangle_tried = true;
+            const UntangledCharts untangled = untangle_flat_charts(mesh.vertices, x, triangles, triangle_labels);
+            const Vertices opened = place(untangled.positions);
+            FaceStates opened_state = quality.face_states(opened);
+            if (opened_state.flipped_count == 0 && count(opened_state.collapsed) < count(state.collapsed) &&
+                quality.measure(opened, false).folded_edges <= result.input_folded_edges) {
+              x = opened;
+              state = std::move(opened_state);
+              planes = std::make_unique<ChartPlanes>(n, triangles, triangle_labels);
+              result.untangled = true;
+              untangled_at = iteration;
+              found = true;
+              relaxed = false;
+            }
+            result.seconds.solve += phase.lap();
           }
           if (!found) break;
           if (!finish_iteration(iteration)) break;
@@ -416,6 +459,7 @@ DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>&
     result.failure = e.what();
   }
   if (keep_acceptable && result.kept_iteration != result.iterations) {
+    result.untangled = result.untangled && result.kept_iteration >= untangled_at;
     x = std::move(acceptable_x);
     result.labels = std::move(acceptable_labels);
     for (size_t t = 0; t < triangle_labels.size(); ++t)

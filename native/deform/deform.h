@@ -113,6 +113,9 @@ struct DeformResult {
   // on purpose there to undo folds.
   int flat_iteration = 0;
   int collapsed_on_purpose = 0;
+  // Whether collapsed or turned-over triangles of a flat result were opened
+  // inside their charts (untangle_flat_charts.h) in the result returned.
+  bool untangled = false;
   // Every attempt at flattening, kept or refused: why a run did not become
   // exact (too much area collapsed, or folds left after every round).
   struct FlattenAttempt {

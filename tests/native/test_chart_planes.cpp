@@ -125,7 +125,8 @@ TEST(FlattenCharts, RefusesWhatWouldCrushTheModel) {
 
 // Once the robust variant has flattened the charts, every later iteration
 // (the relaxation) is an exact polycube with nothing folded, and relaxing
-// does not raise the edge error.
+// does not raise the edge error; opening collapsed triangles
+// (untangle_flat_charts.h) may, in the iteration that lowers their count.
 TEST(FlattenCharts, RelaxationStaysExactAndFoldFree) {
   const std::string path = std::string(POLYCUBE_MESH_DATA) + "/mesh_with_border.off";
   if (!std::ifstream(path).good()) GTEST_SKIP() << "mesh_with_border.off is missing: run `make data`";
@@ -144,7 +145,8 @@ TEST(FlattenCharts, RelaxationStaysExactAndFoldFree) {
   for (size_t i = r.flat_iteration - 1; i < seen.size(); ++i) {
     EXPECT_EQ(seen[i].normal_deviation_max_deg, 0.0);
     EXPECT_EQ(seen[i].flipped_faces, 0);
-    EXPECT_LE(seen[i].edge_error, edge + 1e-9);
+    const bool opened = i > 0 && seen[i].collapsed_faces < seen[i - 1].collapsed_faces;
+    if (!opened) EXPECT_LE(seen[i].edge_error, edge + 1e-9);
     edge = seen[i].edge_error;
   }
   EXPECT_LT(r.figures.edge_error, 0.9 * seen[r.flat_iteration - 1].edge_error);

@@ -277,9 +277,9 @@ INSTANTIATE_TEST_SUITE_P(Models, AutoLabelsFlatten,
 
 }  // namespace
 
-// A run that cannot become exact gives back its best fold-free state: never
-// more folded edges than the input, never more flipped faces than its labels
-// had at the start, and says which iteration that was.
+// A run gives back its best fold-free state, exact or not: never more folded
+// edges than the input, never more flipped faces than its labels had at the
+// start, and says which iteration that was.
 TEST(NeverWorse, ElephantKeepsNoMoreFoldsThanItsInput) {
   const std::string path = cgal_mesh("elephant");
   if (!exists(path)) GTEST_SKIP() << path << " is missing: run `make data` (Debian libcgal-demo)";
@@ -298,7 +298,14 @@ TEST(NeverWorse, ElephantKeepsNoMoreFoldsThanItsInput) {
       start_flipped = QualityMeasure(mesh.vertices, t.triangles, tl).measure(mesh.vertices).flipped_faces;
     }
     print_figures("elephant", r);
-    EXPECT_FALSE(r.converged);
+    // The nearest axes ask for the impossible; the automatic labels are
+    // realised, exactly, once untangled (deform/untangle_flat_charts.h).
+    EXPECT_EQ(r.converged, automatic);
+    if (automatic) {
+      EXPECT_TRUE(r.untangled);
+      EXPECT_EQ(r.figures.flipped_faces, 0);
+      EXPECT_LT(r.figures.collapsed_area, 0.05);
+    }
     EXPECT_LE(r.figures.folded_edges, r.input_folded_edges);
     EXPECT_LE(r.given_labels_figures.flipped_faces, start_flipped);
     EXPECT_LE(r.kept_iteration, r.iterations);

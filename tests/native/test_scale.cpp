@@ -1,8 +1,14 @@
 // Scale independence (mesh/unit_box.h): the same model in any unit gives the
 // same run. B0 (with its published labels) and fandisk (nearest-axis labels)
-// at 1e-150 .. 1e150: identical iteration counts and collapsed counts,
-// figures equal to 1e-9 relative, positions the unit run's times the scale;
-// the labeller, the validator and the orientation check agree too.
+// at 2^-500 .. 2^500: identical iteration counts and collapsed counts,
+// figures equal to 1e-9 relative, positions the unit run's times the scale.
+// At 1e-150 .. 1e150 the unit box holds the model only up to rounding, and
+// the untangling stage (deform/untangle_flat_charts.h), a non-convex
+// minimisation, does not keep rounding-sized differences small: there the
+// runs agree exactly where nothing was untangled, and otherwise in what a
+// user sees (converged, flipped, folded, collapsed within a few triangles,
+// errors within 2%). The labeller, the validator and the orientation check
+// agree at every scale.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -24,6 +30,7 @@ namespace polycube {
 namespace {
 
 const double kScales[] = {1e-150, 1e-6, 1.0, 1e6, 1e150};
+const double kExactScales[] = {0x1p-500, 0x1p-20, 0x1p20, 0x1p500};
 
 struct Model {
   std::string name;
@@ -54,39 +61,51 @@ void expect_relative(double a, double b, const std::string& what) {
   EXPECT_LE(std::abs(a - b), 1e-9 * std::max(std::abs(a), std::abs(b)) + 1e-12) << what << ": " << a << " vs " << b;
 }
 
+// One run of `model` at `scale`, checked against `unit` (the run at 1).
+void expect_same_run(const Model& model, const DeformResult& unit, double scale, bool exact) {
+  const std::string what = model.name + " at " + std::to_string(scale);
+  int callbacks = 0;
+  bool positions_in_scale = true;
+  const DeformResult r = deform(scaled(model.mesh, scale), model.labels, {}, [&](int, const Vertices& x, const Figures&) {
+    ++callbacks;
+    positions_in_scale =
+        positions_in_scale && x.allFinite() && x.cwiseAbs().maxCoeff() > 1e-3 * scale && x.cwiseAbs().maxCoeff() < 1e3 * scale;
+    return true;
+  });
+  EXPECT_EQ(callbacks, r.iterations) << what;
+  EXPECT_TRUE(positions_in_scale) << what;
+  EXPECT_EQ(r.converged, unit.converged) << what;
+  EXPECT_EQ(r.figures.flipped_faces, unit.figures.flipped_faces) << what;
+  EXPECT_EQ(r.figures.folded_edges, unit.figures.folded_edges) << what;
+  EXPECT_EQ(r.untangled, unit.untangled) << what;
+  ASSERT_TRUE(r.positions.allFinite()) << what;
+  if (!exact && unit.untangled) {
+    EXPECT_NEAR(r.figures.collapsed_faces, unit.figures.collapsed_faces, 5) << what;
+    EXPECT_NEAR(r.figures.edge_error, unit.figures.edge_error, 0.02 * unit.figures.edge_error) << what;
+    EXPECT_NEAR(r.figures.area_error, unit.figures.area_error, 0.02 * unit.figures.area_error) << what;
+    EXPECT_LT(r.figures.normal_deviation_max_deg, 0.5) << what;
+    return;
+  }
+  EXPECT_EQ(r.iterations, unit.iterations) << what;
+  EXPECT_EQ(r.figures.collapsed_faces, unit.figures.collapsed_faces) << what;
+  EXPECT_EQ(r.flat_iteration, unit.flat_iteration) << what;
+  EXPECT_EQ(r.unconverged_faces, unit.unconverged_faces) << what;
+  expect_relative(r.figures.normal_deviation_max_deg, unit.figures.normal_deviation_max_deg, what + " max deg");
+  expect_relative(r.figures.normal_deviation_mean_deg, unit.figures.normal_deviation_mean_deg, what + " mean deg");
+  expect_relative(r.figures.edge_error, unit.figures.edge_error, what + " edge error");
+  expect_relative(r.figures.area_error, unit.figures.area_error, what + " area error");
+  const double size = unit.positions.cwiseAbs().maxCoeff();
+  EXPECT_LE((r.positions / scale - unit.positions).cwiseAbs().maxCoeff(), 1e-9 * size) << what;
+}
+
 TEST(Scale, DeformGivesTheSameRunAtEveryScale) {
   const std::vector<Model> all = models();
   if (all.empty()) GTEST_SKIP() << "B0 and fandisk missing: run `make data`";
   for (const Model& model : all) {
     const DeformResult unit = deform(model.mesh, model.labels);
     EXPECT_GT(unit.iterations, 0) << model.name;
-    for (double scale : kScales) {
-      const std::string what = model.name + " at " + std::to_string(scale);
-      int callbacks = 0;
-      bool positions_in_scale = true;
-      const DeformResult r =
-          deform(scaled(model.mesh, scale), model.labels, {}, [&](int, const Vertices& x, const Figures&) {
-            ++callbacks;
-            positions_in_scale = positions_in_scale && x.allFinite() && x.cwiseAbs().maxCoeff() > 1e-3 * scale &&
-                                 x.cwiseAbs().maxCoeff() < 1e3 * scale;
-            return true;
-          });
-      EXPECT_EQ(r.iterations, unit.iterations) << what;
-      EXPECT_EQ(callbacks, r.iterations) << what;
-      EXPECT_TRUE(positions_in_scale) << what;
-      EXPECT_EQ(r.converged, unit.converged) << what;
-      EXPECT_EQ(r.figures.collapsed_faces, unit.figures.collapsed_faces) << what;
-      EXPECT_EQ(r.figures.flipped_faces, unit.figures.flipped_faces) << what;
-      EXPECT_EQ(r.flat_iteration, unit.flat_iteration) << what;
-      EXPECT_EQ(r.unconverged_faces, unit.unconverged_faces) << what;
-      expect_relative(r.figures.normal_deviation_max_deg, unit.figures.normal_deviation_max_deg, what + " max deg");
-      expect_relative(r.figures.normal_deviation_mean_deg, unit.figures.normal_deviation_mean_deg, what + " mean deg");
-      expect_relative(r.figures.edge_error, unit.figures.edge_error, what + " edge error");
-      expect_relative(r.figures.area_error, unit.figures.area_error, what + " area error");
-      ASSERT_TRUE(r.positions.allFinite()) << what;
-      const double size = unit.positions.cwiseAbs().maxCoeff();
-      EXPECT_LE((r.positions / scale - unit.positions).cwiseAbs().maxCoeff(), 1e-9 * size) << what;
-    }
+    for (double scale : kExactScales) expect_same_run(model, unit, scale, true);
+    for (double scale : kScales) expect_same_run(model, unit, scale, false);
   }
 }
 

@@ -1,0 +1,44 @@
+// The last stage of the `robust` variant (docs/design.md section 2.6): an
+// exact polycube whose collapsed triangles get their area back, without
+// leaving their charts.
+//
+// Why: flatten_charts.h reaches the exact polycube by linear solves, which
+// know nothing of orientation, and collapses every triangle that would turn
+// over; what is collapsed is a hole in the polycube map (nothing downstream,
+// UVs, quad remeshing, can use it): 0.8% of fandisk's area, 2-11% on organic
+// models. Most of those triangles have room in their charts.
+//
+// How: every vertex keeps, per axis, either its chart's plane (shared with
+// the chart's other vertices; the plane itself may move) or a coordinate of
+// its own, so every placement of these unknowns is an exact polycube on the
+// same charts. Over them we minimise each triangle's distortion from its
+// scaled input shape, measured in its chart's plane, with the regularised
+// barrier of Garanzha et al. 2021 ("Foldover-free maps in 50 lines of code"):
+// with chi(d) = (d + sqrt(eps^2 + d^2)) / 2 of the Jacobian's determinant d,
+// E = sum area_in ((1 - theta) |J|^2 / chi + theta (d^2 + 1) / chi),
+// minimised again as eps shrinks, which takes triangles of zero or negative
+// area to positive area where the charts allow it. A triangle still
+// collapsed or turned over after a round has no room (the charts meet so
+// that no placement gives it area): it is put on a line, its corners
+// sharing one more unknown, and left out.
+#pragma once
+
+#include <vector>
+
+#include "mesh/mesh.h"
+
+namespace polycube {
+
+struct UntangledCharts {
+  Vertices positions;       // every chart flat on its axis, like `flat`
+  int rounds = 0;           // minimisations done (one per eps)
+  int put_on_a_line = 0;    // triangles left collapsed: no room in their charts
+  bool untangled = false;   // every other triangle has positive area in its chart
+};
+
+// `flat`: an exact polycube of `input` (every triangle on a plane of its
+// label's axis, per-triangle labels 0..5), e.g. from flatten_charts.h.
+UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat, const Triangles& triangles,
+                                     const std::vector<int>& triangle_labels, int max_rounds = 30);
+
+}  // namespace polycube
