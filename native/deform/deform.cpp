@@ -340,7 +340,7 @@ DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>&
           // their charts (untangle_flat_charts.h), kept when nothing turns
           // over, fewer are collapsed and no more edges fold; then relaxed
           // again, as far as that collapses nothing.
-          if ((!found || relaxed) && !untangle_tried && count(state.collapsed) > 0) {
+          if ((!found || relaxed) && !untangle_tried && !result.untangled && count(state.collapsed) > 0) {
             untangle_tried = true;
             const UntangledCharts untangled = untangle_flat_charts(mesh.vertices, x, triangles, triangle_labels);
             const Vertices opened = place(untangled.positions);

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "linear_algebra/minimize_lbfgs.h"
+#include "linear_algebra/parallel.h"
 #include "mesh/union_find.h"
 
 namespace polycube {
@@ -190,10 +191,18 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
   rebuild();
 
   double eps = kFirstEps;
+  // Per thread: its triangles' share of the gradient, summed afterwards.
+  std::vector<Eigen::VectorXd> partial(std::max(1, parallel_threads(static_cast<long>(count))));
   auto energy = [&](const Eigen::VectorXd& at, Eigen::VectorXd& gradient) {
-    gradient.setZero(at.size());
+    const long size = static_cast<long>(active.size());
+    const int threads = parallel_threads(size);
     double total = 0.0;
-    for (const Triangle& t : active) {
+#pragma omp parallel for num_threads(threads) reduction(+ : total) schedule(static)
+    for (int chunk = 0; chunk < threads; ++chunk) {
+     Eigen::VectorXd& part = partial[chunk];
+     part.setZero(at.size());
+     for (long i = size * chunk / threads; i < size * (chunk + 1) / threads; ++i) {
+      const Triangle& t = active[i];
       Eigen::Matrix2d j;
       const double d = determinant(t, at, &j);
       const double root = std::sqrt(eps * eps + d * d);
@@ -208,11 +217,14 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
       const Eigen::Matrix2d by_j = t.weight * ((1.0 - kTheta) * 2.0 / chi * j + by_d * cofactor);
       const Eigen::Matrix2d by_edges = by_j * t.inverse_reference.transpose();
       for (int c = 0; c < 2; ++c) {
-        gradient[t.unknown[1][c]] += by_edges(c, 0);
-        gradient[t.unknown[2][c]] += by_edges(c, 1);
-        gradient[t.unknown[0][c]] -= by_edges(c, 0) + by_edges(c, 1);
+        part[t.unknown[1][c]] += by_edges(c, 0);
+        part[t.unknown[2][c]] += by_edges(c, 1);
+        part[t.unknown[0][c]] -= by_edges(c, 0) + by_edges(c, 1);
       }
+     }
     }
+    gradient = partial[0];
+    for (int chunk = 1; chunk < threads; ++chunk) gradient += partial[chunk];
     return total;
   };
 
