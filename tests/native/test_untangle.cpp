@@ -1,0 +1,116 @@
+// The untangling stage (deform/untangle_flat_charts.h) and its minimiser
+// (linear_algebra/minimize_lbfgs.h): collapsed and turned-over triangles of a
+// flat polycube get their area back, every chart stays flat on its axis, and
+// chart planes move where the triangles need room.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <set>
+
+#include "deform/quality.h"
+#include "deform/untangle_flat_charts.h"
+#include "linear_algebra/minimize_lbfgs.h"
+#include "mesh/triangulate.h"
+#include "test_meshes.h"
+
+namespace polycube {
+namespace {
+
+TEST(MinimizeLbfgs, FindsTheRosenbrockMinimum) {
+  const Objective rosenbrock = [](const Eigen::VectorXd& x, Eigen::VectorXd& g) {
+    const double a = 1.0 - x[0], b = x[1] - x[0] * x[0];
+    g.resize(2);
+    g[0] = -2.0 * a - 400.0 * x[0] * b;
+    g[1] = 200.0 * b;
+    return a * a + 100.0 * b * b;
+  };
+  Eigen::VectorXd x(2);
+  x << -1.2, 1.0;
+  const LbfgsResult r = minimize_lbfgs(rosenbrock, x, 500, 1e-10, 0.0);
+  EXPECT_TRUE(r.converged);
+  EXPECT_NEAR(x[0], 1.0, 1e-6);
+  EXPECT_NEAR(x[1], 1.0, 1e-6);
+  EXPECT_LT(r.iterations, 200);
+}
+
+struct Block {
+  Vertices vertices;
+  Triangles triangles;
+  std::vector<int> labels;  // per triangle
+};
+
+// A 4 x 4 x 2 block of voxels, triangulated: an exact polycube of itself.
+Block block() {
+  std::set<std::array<int, 3>> voxels;
+  test_meshes::add_block(voxels, {0, 0, 0}, 4, 4, 2);
+  const test_meshes::LabelledMesh m = test_meshes::voxel_surface(voxels);
+  const Triangulation t = triangulate(m.mesh.vertices, m.mesh.faces);
+  Block b{m.mesh.vertices, t.triangles, {}};
+  for (int f : t.face_of_triangle) b.labels.push_back(m.labels[f]);
+  return b;
+}
+
+// Every triangle on a plane of its label's axis: its corners share that coordinate.
+bool flat(const Vertices& x, const Block& b) {
+  for (Eigen::Index t = 0; t < b.triangles.rows(); ++t) {
+    const int axis = b.labels[t] / 2;
+    for (int k = 1; k < 3; ++k)
+      if (std::abs(x(b.triangles(t, k), axis) - x(b.triangles(t, 0), axis)) > 1e-12) return false;
+  }
+  return true;
+}
+
+TEST(UntangleFlatCharts, OpensTurnedOverAndCollapsedTriangles) {
+  const Block b = block();
+  Vertices tangled = b.vertices;
+  // The top's (z = 2) inner vertices: one pushed across its neighbours (its
+  // triangles turn over), one onto its neighbour (they collapse).
+  int pushed = -1, crushed = -1;
+  for (Eigen::Index v = 0; v < tangled.rows(); ++v) {
+    if (tangled(v, 2) != 2.0) continue;
+    if (tangled(v, 0) == 1.0 && tangled(v, 1) == 1.0) pushed = static_cast<int>(v);
+    if (tangled(v, 0) == 3.0 && tangled(v, 1) == 2.0) crushed = static_cast<int>(v);
+  }
+  ASSERT_GE(pushed, 0);
+  ASSERT_GE(crushed, 0);
+  tangled(pushed, 0) = 2.6;
+  tangled(crushed, 0) = 2.0;
+  const QualityMeasure quality(b.vertices, b.triangles, b.labels);
+  const FaceStates before = quality.face_states(tangled);
+  ASSERT_GT(before.flipped_count, 0);
+  ASSERT_TRUE(flat(tangled, b));
+
+  const UntangledCharts u = untangle_flat_charts(b.vertices, tangled, b.triangles, b.labels);
+  EXPECT_TRUE(u.untangled);
+  EXPECT_EQ(u.put_on_a_line, 0);
+  EXPECT_TRUE(flat(u.positions, b));
+  const Figures after = quality.measure(u.positions);
+  EXPECT_EQ(after.flipped_faces, 0);
+  EXPECT_EQ(after.collapsed_faces, 0);
+  EXPECT_LT(after.normal_deviation_max_deg, 1e-9);
+  EXPECT_EQ(after.folded_edges, 0);
+}
+
+TEST(UntangleFlatCharts, MovesAChartPlaneToGiveItsNeighboursRoom) {
+  const Block b = block();
+  Vertices squeezed = b.vertices;
+  // The block pressed flat: the sides collapse; the top is one plane
+  // unknown and must rise again.
+  squeezed.col(2) *= 1e-5;
+  const QualityMeasure quality(b.vertices, b.triangles, b.labels);
+  ASSERT_GT(quality.measure(squeezed).collapsed_faces, 0);
+
+  const UntangledCharts u = untangle_flat_charts(b.vertices, squeezed, b.triangles, b.labels);
+  EXPECT_TRUE(u.untangled);
+  EXPECT_TRUE(flat(u.positions, b));
+  const Figures after = quality.measure(u.positions);
+  EXPECT_EQ(after.collapsed_faces, 0);
+  EXPECT_EQ(after.flipped_faces, 0);
+  // Height over width back near the input's 2 / 4.
+  const Eigen::RowVector3d size = u.positions.colwise().maxCoeff() - u.positions.colwise().minCoeff();
+  EXPECT_NEAR(size[2] / size[0], 0.5, 0.1);
+  EXPECT_LT(after.area_error, 0.1);
+}
+
+}  // namespace
+}  // namespace polycube
