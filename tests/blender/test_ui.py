@@ -316,15 +316,16 @@ def test_edit_mode_panel_and_label_pie():
     x, y = region.x + region.width // 4, region.y + region.height // 2  # left of the sphere
     window.event_simulate(type='MOUSEMOVE', value='NOTHING', x=x, y=y)
     yield 0.2
-    bpy.context.preferences.view.pie_animation_timeout = 0  # drawn whole at once, for the screenshot
     # The documented shortcut opens the pie.
     window.event_simulate(type='LEFT_SHIFT', value='PRESS', x=x, y=y)
     window.event_simulate(type='LEFT_ALT', value='PRESS', x=x, y=y, shift=True)
     window.event_simulate(type='L', value='PRESS', x=x, y=y, shift=True, alt=True)
     yield from _wait_until(lambda: pie_draws, "the label pie menu after Shift Alt L")
-    # Lean towards +X, as a user choosing it does (the pie redraws with it lit).
-    window.event_simulate(type='MOUSEMOVE', value='NOTHING', x=x + 40, y=y, shift=True, alt=True)
-    yield 1.0
+    # Lean towards +X, as a user choosing it does (the pie redraws with it lit). The pie
+    # unfolds and fades in as events reach it: keep them coming for longer than that takes.
+    for step in range(10):
+        window.event_simulate(type='MOUSEMOVE', value='NOTHING', x=x + 40 + step, y=y, shift=True, alt=True)
+        yield 0.1
     _screenshot(PIE_SCREENSHOT)
     # Esc closes the pie without choosing; only then let go of the keys.
     window.event_simulate(type='ESC', value='PRESS', x=x, y=y)
