@@ -367,9 +367,14 @@ def test_auto_label_runs_modal_and_esc_leaves_the_labels():
 
     small = uv_sphere("Labelled sphere")
     select_only(small)
+    started = time.monotonic()
     with _override():
         assert bpy.ops.object.polycube_auto_label('INVOKE_DEFAULT') == {'RUNNING_MODAL'}
     yield from _wait_until(lambda: "polycube_label" in small.data.attributes, "the modal Auto Label")
+    # The redo panel's estimate: the labeller's time, within the run's.
+    operator = bpy.context.window_manager.operators[-1]
+    assert operator.bl_idname == "OBJECT_OT_polycube_auto_label", operator.bl_idname
+    assert 0 < operator.properties.last_seconds <= time.monotonic() - started, operator.properties.last_seconds
     values = np.empty(len(small.data.polygons), dtype=np.int32)
     small.data.attributes["polycube_label"].data.foreach_get("value", values)
     mesh = polycube.mesh_arrays.read_mesh_arrays(small.data)
