@@ -62,7 +62,7 @@ demo: build data
 package: build
 	rm -rf $(BUILD)/package dist/polycube-$(VERSION).zip && mkdir -p $(BUILD)/package dist
 	cp -r addon $(BUILD)/package/polycube
-	cp blender_manifest.toml $(BUILD)/package/polycube/
+	cp blender_manifest.toml README.md $(BUILD)/package/polycube/
 	rm -rf $(BUILD)/package/polycube/lib
 	$(PYTHON) packaging/bundle_libraries.py $(BUILD)/package/polycube/polycube_native*.so $(BUILD)/package/polycube/lib
 	find $(BUILD)/package -name __pycache__ -prune -exec rm -rf {} +

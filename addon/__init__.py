@@ -14,13 +14,16 @@ bl_info = {
     "location": "View3D > Sidebar > Polycube",
     "description": "Deform meshes into their polycube, a shape key per iteration",
     "category": "Mesh",
-    "doc_url": "https://github.com/polycube/polycube#blender-add-on",
-    "tracker_url": "https://github.com/polycube/polycube/issues",
+    # Sections of the README the package carries; register() makes them file:// addresses.
+    "doc_url": "README.md#blender-add-on",
+    "tracker_url": "README.md#reporting-problems",
 }
+
+import os
 
 import bpy
 
-from . import preferences
+from . import help_links, preferences
 
 try:
     from . import polycube_native  # noqa: F401 (the rest of the add-on imports it)
@@ -64,6 +67,9 @@ else:
 
 
 def register():
+    folder = os.path.dirname(os.path.realpath(__file__))  # a source checkout's link: its README
+    help_links.resolve(bl_info, folder)
+    help_links.resolve_in_addon_list(__name__, folder)
     for cls in _classes:
         bpy.utils.register_class(cls)
     for module in _modules:

@@ -5,7 +5,9 @@ from the sidebar, the face menus or the label pie menu (Shift Alt L).
 Written through `bmesh` (Edit Mode holds the mesh there) into the `polycube_label`
 attribute, which wins over face maps (docs/design.md section 3). The first assignment
 creates the attribute holding the labels the mesh had so far, so the other faces
-keep theirs. Shown label colors follow.
+keep theirs. In Blender 3.x the face maps follow, as Auto Label writes them, so that
+the two stores never disagree (the face maps panel shows the same labels). Shown
+label colors follow (cleared faces: their nearest axis, pale).
 """
 
 import bmesh
@@ -14,8 +16,8 @@ import numpy as np
 from bpy.props import EnumProperty
 
 from . import label_cache
-from .label_colours import COLOUR_ATTRIBUTE, LABEL_COLOURS, UNLABELLED_COLOUR, display_colour
-from .labels import LABEL_ATTRIBUTE, read_labels
+from .label_colours import COLOUR_ATTRIBUTE, LABEL_COLOURS, NEAREST_COLOURS, display_colour, nearest_axes
+from .labels import LABEL_ATTRIBUTE, read_labels, write_face_maps
 from .polycube_native import LABEL_NAMES
 from .report import failure
 
@@ -23,7 +25,8 @@ CLEAR = 'NONE'
 LABEL_ITEMS = tuple((name, name, f"Faces turn to the {name} direction") for name in LABEL_NAMES) + (
     (CLEAR, "Clear", "No label: the faces take the axis nearest their normal"),)
 # Byte colors in bmesh are the stored (sRGB) values: the palette as the screen shows it.
-_SHOWN_COLOURS = [display_colour(colour) for colour in LABEL_COLOURS] + [display_colour(UNLABELLED_COLOUR)]
+_SHOWN_COLOURS = [display_colour(colour) for colour in LABEL_COLOURS]
+_SHOWN_NEAREST = [display_colour(colour) for colour in NEAREST_COLOURS]
 
 
 def label_value(item):
@@ -90,10 +93,13 @@ def _assign(obj, value):
         face[layer] = value
     colours = bm.loops.layers.color.get(COLOUR_ATTRIBUTE)
     if colours is not None:
-        colour = _SHOWN_COLOURS[value]
-        for face in selected:
+        shown = [_SHOWN_COLOURS[value]] * len(selected) if value >= 0 else \
+            [_SHOWN_NEAREST[axis] for axis in nearest_axes([face.normal for face in selected])]
+        for face, colour in zip(selected, shown):
             for loop in face.loops:
                 loop[colours] = colour
+    if hasattr(obj, "face_maps"):
+        write_face_maps(obj, np.fromiter((face[layer] for face in bm.faces), dtype=np.int32, count=len(bm.faces)))
     bmesh.update_edit_mesh(mesh, loop_triangles=False, destructive=False)
     return len(selected)
 

@@ -5,6 +5,8 @@ Labels are read and written as labels.py says (docs/design.md section 3); every
 operator is undoable and reports in one sentence per object.
 """
 
+from time import perf_counter
+
 import bpy
 import numpy as np
 from bpy.props import BoolProperty
@@ -16,6 +18,7 @@ from .label_source import automatic_labels, mark_automatic
 from .labels import read_labels, write_face_maps, write_label_attribute
 from .mesh_arrays import read_mesh_arrays
 from .operators import PASS_THROUGH
+from .redo_estimate import RedoEstimate
 from .report import failure
 from .settings import LabelSettings, label_options
 from .validation import details, offending_faces, summary, validate
@@ -44,7 +47,7 @@ def _poll_object_mode_meshes(cls, context):
     return True
 
 
-class OBJECT_OT_polycube_auto_label(LabelSettings, bpy.types.Operator):
+class OBJECT_OT_polycube_auto_label(RedoEstimate, LabelSettings, bpy.types.Operator):
     """Label every face of the selected meshes automatically: the polycube_label attribute and, \
 in Blender 3.x, face maps +X ... -Z"""
     bl_idname = "object.polycube_auto_label"
@@ -59,17 +62,22 @@ in Blender 3.x, face maps +X ... -Z"""
         self.layout.use_property_split = True
         for name in label_options(self):
             self.layout.prop(self, name)
+        self.draw_estimate(self.layout)
 
     def execute(self, context):
         """Every object in turn, to the end (background mode, scripts, the redo panel)."""
         self._labelled = 0
+        self.last_seconds = 0.0
         for obj, mesh in self._read(context):
+            start = perf_counter()
             try:
                 labels = automatic_labels(mesh, label_options(self))
             except ValueError as error:
                 # An error, not a warning: scripts (headless --labels auto) see it as RuntimeError.
                 self.report({'ERROR'}, failure(obj.name, "labelled", error))
                 continue
+            finally:
+                self.last_seconds += perf_counter() - start
             self._write(obj, mesh, labels)
         return {'FINISHED'} if self._labelled else {'CANCELLED'}
 
@@ -82,6 +90,7 @@ in Blender 3.x, face maps +X ... -Z"""
         if not self._pending:
             return {'CANCELLED'}
         self._total = len(self._pending)
+        self.last_seconds = 0.0
         wm = context.window_manager
         wm.progress_begin(0, self._total)
         self._timer = wm.event_timer_add(0.1, window=context.window)
@@ -100,6 +109,7 @@ in Blender 3.x, face maps +X ... -Z"""
         if not self._call.done:
             self._show_progress(context)
             return {'RUNNING_MODAL'}
+        self.last_seconds += self._call.seconds
         obj = bpy.data.objects.get(self._name)
         if self._call.error is not None:
             self.report({'ERROR'}, failure(self._name, "labelled", self._call.error))

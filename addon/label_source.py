@@ -24,12 +24,19 @@ def is_automatic(obj, labels):
         obj.data.get(AUTO_LABELS_PROPERTY) == labels_digest(labels.values)
 
 
-def labels_for_run(obj, mesh, source, options):
-    """Labels for `mesh` (the object's MeshArrays); ValueError if the stored ones are junk.
-    `options`: the labeller's keyword arguments (settings.label_options)."""
-    if source == 'AUTO':
+def stored_labels(obj, source):
+    """The stored Labels a run starts from (main thread); None when `source` labels every
+    face automatically. ValueError if the stored ones are junk."""
+    return None if source == 'AUTO' else read_labels(obj)
+
+
+def labels_for_run(stored, mesh, source, options):
+    """The labels a run uses: `stored` (from stored_labels), completed by the labeller
+    where `source` asks. `mesh`: the object's MeshArrays; `options`: the labeller's
+    keyword arguments (settings.label_options). Touches no Blender data: may run on a
+    worker thread."""
+    if stored is None:
         return Labels(automatic_labels(mesh, options), AUTOMATIC)
-    stored = read_labels(obj)
     unlabelled = stored.values < 0
     if source == 'STORED' or not unlabelled.any():
         return stored

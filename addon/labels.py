@@ -85,6 +85,16 @@ class _FaceData:
             return np.full(self.count, -1, dtype=np.int32)
         return np.fromiter((face[layer] for face in self.bmesh.faces), dtype=np.int32, count=self.count)
 
+    def set_face_map_indices(self, values):
+        if self.bmesh is None:
+            if not len(self.mesh.face_maps):
+                self.mesh.face_maps.new()
+            self.mesh.face_maps[0].data.foreach_set("value", values)
+            return
+        layer = self.bmesh.faces.layers.face_map.verify()
+        for face, value in zip(self.bmesh.faces, values.tolist()):
+            face[layer] = value
+
 
 def label_counts(values):
     """Faces per label in LABEL_NAMES order, then the unlabelled ones."""
@@ -100,7 +110,8 @@ def write_label_attribute(mesh, values):
 
 
 def write_face_maps(obj, values):
-    """Blender 3.x only: put the faces into face maps named as in LABEL_NAMES.
+    """Blender 3.x only: put the faces into face maps named as in LABEL_NAMES, in Object
+    or Edit Mode (then through bmesh: the caller updates the edit mesh).
 
     Maps of those names are ours: refilled, and removed when left empty. A face
     belongs to one face map at most, so faces in a user's other map (a name that
@@ -109,12 +120,8 @@ def write_face_maps(obj, values):
     Returns how many faces stayed in the user's maps.
     """
     values = np.asarray(values, dtype=np.int32)
-    mesh = obj.data
-    if len(mesh.face_maps):
-        current = np.empty(len(values), dtype=np.int32)
-        mesh.face_maps[0].data.foreach_get("value", current)
-    else:
-        current = np.full(len(values), -1, dtype=np.int32)
+    faces = _FaceData(obj.data)
+    current = faces.face_map_indices()
     # One slot past the maps stands for "in no map".
     users = np.array([label_from_name(face_map.name) is None for face_map in obj.face_maps] + [False])
     stays = users[np.where(current >= 0, current, len(users) - 1)]
@@ -122,9 +129,7 @@ def write_face_maps(obj, values):
     for label in np.unique(values[~stays & (values >= 0)]):
         name = LABEL_NAMES[label]
         map_of_label[label] = (obj.face_maps.get(name) or obj.face_maps.new(name=name)).index
-    if not len(mesh.face_maps):
-        mesh.face_maps.new()
-    mesh.face_maps[0].data.foreach_set("value", np.where(stays, current, map_of_label[values]))
+    faces.set_face_map_indices(np.where(stays, current, map_of_label[values]))
     empty = [name for label, name in enumerate(LABEL_NAMES)
              if map_of_label[label] < 0 and name in obj.face_maps]
     for name in empty:

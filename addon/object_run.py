@@ -2,8 +2,11 @@
 """One object's deformation: inputs read from Blender, iterations written back.
 
 The same object serves the synchronous run (background mode, redo panel) and the
-modal one (solver in a thread): whoever drives the solver hands each iteration to
-`add_iteration` on Blender's main thread and the result to `finish`.
+modal one (in threads). Its steps, in order: the constructor reads the object (main
+thread); `compute` makes the automatic labels and the refinement the settings ask
+for (native work only: any thread); `adopt` takes them in and makes the subdivided
+copy (main thread); then whoever drives the solver hands each iteration to
+`add_iteration` on the main thread and the result to `finish`.
 """
 
 from time import perf_counter
@@ -11,39 +14,64 @@ from time import perf_counter
 import bpy
 
 from . import animation, shape_keys
-from .label_source import is_automatic, labels_for_run
+from .label_source import is_automatic, labels_for_run, stored_labels
 from .labels import label_counts
 from .mesh_arrays import read_mesh_arrays
 from .polycube_native import LABEL_NAMES
 from .progress_watch import STILL_ITERATIONS, ProgressWatch
 from .report import store_labels_used, store_report
 from .settings import label_options
-from .subdivide import remove_copy, subdivided_copy
+from .subdivide import check_copy_name, refine_mesh, remove_copy, subdivided_copy
 
 
 class ObjectRun:
     def __init__(self, obj, settings):
-        """Read the object's mesh and labels, and make its subdivided copy when the settings
-        ask for one; ValueError (one sentence), with nothing written, if it cannot run."""
+        """Read the object's mesh and stored labels; ValueError (one sentence), with
+        nothing written, if it cannot run."""
         start = perf_counter()
         self.settings = settings
         self.mesh = read_mesh_arrays(obj.data)
-        self.labels = labels_for_run(obj, self.mesh, settings.label_source, label_options(settings))
-        self.labels_automatic = is_automatic(obj, self.labels)
+        self._stored = stored_labels(obj, settings.label_source)
+        self.object_name = obj.name
         self.source_name = None  # the object a subdivided copy was made from
         if settings.subdivide:
+            check_copy_name(obj)
             self.source_name = obj.name
-            obj, self.mesh, self.labels = subdivided_copy(
-                obj, self.mesh, self.labels, settings.subdivide_levels, settings.subdivide_scheme)
-        self.object_name = obj.name
+        self.labels = None  # set by adopt
+        self.labels_automatic = False
         self.seconds_read = perf_counter() - start
         self.seconds_write = 0.0
         self.kept = []  # iterations written as shape keys, in order
-        # Tolerance 0 asks for every iteration: still ones get no key, but the run goes on.
-        still = STILL_ITERATIONS if settings.tolerance > 0 else 0
-        self.watch = ProgressWatch(self.mesh.vertices, still_iterations=still)
+        self.watch = None
         self.live_preview = False
         self._started = False
+
+    def compute(self):
+        """The labels (automatic where the settings ask) and the refined mesh (None without
+        Subdivide Before), for `adopt`. Touches no Blender data: may run on a worker thread;
+        ValueError if the labeller or the refinement refuses the mesh."""
+        start = perf_counter()
+        settings = self.settings
+        labels = labels_for_run(self._stored, self.mesh, settings.label_source, label_options(settings))
+        refined = refine_mesh(self.mesh, labels, settings.subdivide_levels, settings.subdivide_scheme) \
+            if settings.subdivide else None
+        return labels, refined, perf_counter() - start
+
+    def adopt(self, computed):
+        """Take compute's result in (main thread): make the subdivided copy, ready the watch."""
+        labels, refined, seconds = computed
+        start = perf_counter()
+        obj = self._object()
+        self.labels_automatic = is_automatic(obj, labels)
+        if refined is not None:
+            obj, self.mesh, labels = subdivided_copy(
+                obj, refined, labels, self.settings.subdivide_levels, self.settings.subdivide_scheme)
+            self.object_name = obj.name
+        self.labels = labels
+        self.seconds_read += seconds + perf_counter() - start
+        # Tolerance 0 asks for every iteration: still ones get no key, but the run goes on.
+        still = STILL_ITERATIONS if self.settings.tolerance > 0 else 0
+        self.watch = ProgressWatch(self.mesh.vertices, still_iterations=still)
 
     def solver_call(self):
         """Positional and keyword arguments for polycube_native.deform."""
@@ -112,7 +140,7 @@ class ObjectRun:
     def discard(self):
         """Take back what this run wrote (the run failed half-way): its keys or its copy."""
         obj = bpy.data.objects.get(self.object_name)
-        if obj is not None and self.source_name is not None:
+        if obj is not None and self.source_name not in (None, self.object_name):
             remove_copy(obj)
         elif obj is not None and self._started:
             animation.clear_animation(obj)

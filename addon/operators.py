@@ -2,8 +2,10 @@
 """Deform to Polycube: the operator.
 
 `execute` runs each object to the end (background mode, scripts, the redo panel);
-`invoke` in the UI runs the solver on a worker thread and writes iterations from a
-timer, so Blender stays responsive and Esc stops early, keeping what is written.
+`invoke` in the UI runs the slow parts on worker threads: first the automatic labels
+and the refinement (Esc then cancels with nothing changed), then the solver, whose
+iterations a timer writes (Esc then stops early, keeping what is written). Blender
+stays responsive and the status bar says what runs from the start.
 """
 
 from time import perf_counter
@@ -11,8 +13,10 @@ from time import perf_counter
 import bpy
 
 from . import polycube_native, preferences
+from .background_call import BackgroundCall
 from .object_run import ObjectRun
-from .report import advice, failure, outcome
+from .redo_estimate import RedoEstimate
+from .report import advice, failure, outcome, work_seconds
 from .settings import DeformSettings
 from .solver_thread import SolverThread
 from .subdivide import source_object
@@ -26,7 +30,7 @@ PASS_THROUGH = {
 }
 
 
-class OBJECT_OT_polycube_deform(DeformSettings, bpy.types.Operator):
+class OBJECT_OT_polycube_deform(RedoEstimate, DeformSettings, bpy.types.Operator):
     """Deform the selected mesh objects into their polycube, a shape key per iteration"""
     bl_idname = "object.polycube_deform"
     bl_label = "Deform to Polycube"
@@ -44,10 +48,16 @@ class OBJECT_OT_polycube_deform(DeformSettings, bpy.types.Operator):
 
     def draw(self, context):
         self.draw_settings(self.layout)
+        self.draw_estimate(self.layout)
 
     def execute(self, context):
         self._problems, self._reports = [], []
         for run in self._prepare(context):
+            try:
+                run.adopt(run.compute())
+            except (ValueError, RuntimeError) as error:
+                self._fail(run, error)
+                continue
             args, kwargs = run.solver_call()
             outside = [0.0]  # seconds in the callback (the watch, writing keys): not solving
 
@@ -74,6 +84,7 @@ class OBJECT_OT_polycube_deform(DeformSettings, bpy.types.Operator):
             return self._conclude(context)
         self._cancelled = False
         self._iterations_before = 0
+        self._call = self._thread = None
         wm = context.window_manager
         wm.progress_begin(0, len(self._pending) * self.iterations)
         self._timer = wm.event_timer_add(0.05, window=context.window)
@@ -84,6 +95,12 @@ class OBJECT_OT_polycube_deform(DeformSettings, bpy.types.Operator):
     def modal(self, context, event):
         if event.type == 'ESC' and event.value == 'PRESS':
             self._cancelled = True
+            if self._call is not None:
+                # Labels or refinement under way: nothing is written yet, and nothing will be.
+                self._call = None
+                self._problems.append(f"Cancelled before '{self._run.object_name}' was deformed.")
+                self._next_object(context)
+                return self._end(context)
             self._thread.request_stop()
             context.workspace.status_text_set("Polycube: stopping after this iteration...")
             return {'RUNNING_MODAL'}
@@ -92,8 +109,9 @@ class OBJECT_OT_polycube_deform(DeformSettings, bpy.types.Operator):
         return {'PASS_THROUGH'} if event.type in PASS_THROUGH else {'RUNNING_MODAL'}
 
     def cancel(self, context):
-        # Blender is closing the window: let the thread go, keep what is written.
-        self._thread.request_stop()
+        # Blender is closing the window: let the threads go, keep what is written.
+        if self._thread is not None:
+            self._thread.request_stop()
         self._cleanup(context)
 
     def _prepare(self, context):
@@ -121,15 +139,38 @@ class OBJECT_OT_polycube_deform(DeformSettings, bpy.types.Operator):
         return runs
 
     def _start_next(self, context):
+        """Labels and refinement for the next object, on a worker thread."""
         self._run = self._pending.pop(0)
         self._run_error = None
+        self._thread = None
+        self._call = BackgroundCall(self._run.compute)
+        self._show_preparation(context)
+
+    def _start_solver(self, context):
+        self._run.adopt(self._call.result)
+        self._call = None
         self._run.live_preview = preferences.live_preview(context)
         args, kwargs = self._run.solver_call()
         self._thread = SolverThread(args, kwargs, self._run.settings.keeps, self._run.watch)
         self._thread.start()
+        context.workspace.status_text_set(
+            f"Polycube: '{self._run.object_name}' setting up the solver (Esc to stop)")
 
     def _pump(self, context):
-        """Hand the solver's messages to the run; True once every object is done."""
+        """Move the current object's run on; True once every object is done."""
+        if self._call is not None:
+            if not self._call.done:
+                self._show_preparation(context)
+                return False
+            try:
+                if self._call.error is not None:
+                    raise self._call.error
+                self._start_solver(context)
+            except (ValueError, RuntimeError) as error:
+                self._call = None
+                self._fail(self._run, error)
+                return self._next_object(context)
+            return False
         # A time budget per timer event, so that writing keys never freezes the UI.
         for message in self._thread.messages(seconds=0.1):
             kind = message[0]
@@ -161,14 +202,21 @@ class OBJECT_OT_polycube_deform(DeformSettings, bpy.types.Operator):
         """Start the next object's run; True when there is none left to run."""
         self._iterations_before += self.iterations
         if self._cancelled:
-            for run in self._pending:
-                run.discard()  # a subdivided copy made for it goes again
+            for run in self._pending:  # nothing is made for a run before it starts
                 self._problems.append(f"Cancelled before '{run.object_name}' was deformed.")
             self._pending = []
         if not self._pending:
             return True
         self._start_next(context)
         return False
+
+    def _show_preparation(self, context):
+        settings = self._run.settings
+        work = [what for what, asked in (("labelling", settings.label_source != 'STORED'),
+                                         ("subdividing", settings.subdivide)) if asked]
+        context.workspace.status_text_set(
+            f"Polycube: '{self._run.object_name}' {' and '.join(work) or 'reading labels'}, "
+            f"{self._call.seconds:.1f} s (Esc to cancel)")
 
     def _show_progress(self, context, iteration, figures):
         context.window_manager.progress_update(self._iterations_before + iteration)
@@ -198,9 +246,12 @@ class OBJECT_OT_polycube_deform(DeformSettings, bpy.types.Operator):
 
     def _conclude(self, context):
         """Report what happened; FINISHED when at least one object was deformed."""
+        self.last_seconds = sum(work_seconds(report) for report in self._reports)
         if not self._reports:
+            # Esc before anything was written is the user's choice, not an error.
+            level = {'WARNING'} if getattr(self, "_cancelled", False) else {'ERROR'}
             for problem in self._problems:
-                self.report({'ERROR'}, problem)
+                self.report(level, problem)
             return {'CANCELLED'}
         for problem in self._problems:
             self.report({'WARNING'}, problem)

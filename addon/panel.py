@@ -8,7 +8,7 @@ import bpy
 
 from .label_assign import draw_label_buttons
 from .label_cache import label_summary
-from .label_colours import LABEL_COLOURS, UNLABELLED_COLOUR, colours_shown, display_colour
+from .label_colours import LABEL_COLOURS, colours_shown, display_colour
 from .label_operators import (
     OBJECT_OT_polycube_auto_label, OBJECT_OT_polycube_label_colours, OBJECT_OT_polycube_validate_labels)
 from .operators import OBJECT_OT_polycube_deform
@@ -75,9 +75,8 @@ class VIEW3D_PT_polycube_labels(_SubPanel, bpy.types.Panel):
                 row.template_node_socket(color=display_colour(colour))
                 row.label(text=f"{name}: {count}")
             if summary.unlabelled:
-                row = layout.row(align=True)
-                row.template_node_socket(color=display_colour(UNLABELLED_COLOUR))
-                row.label(text=f"Unlabelled: {summary.unlabelled}")
+                # Colors show them pale, in the color of the axis the solver gives them.
+                wrap(layout, context, f"Unlabelled: {summary.unlabelled}, pale: nearest axis")
             _draw_validation(layout, context, load_validation(obj, summary.digest))
 
         if context.mode == 'EDIT_MESH':

@@ -50,6 +50,13 @@ def load_report(obj):
     return report
 
 
+def work_seconds(report):
+    """How long the run worked: reading (labels and refinement too), solving, writing;
+    not the time the UI spent between the modal run's steps."""
+    seconds = report["seconds"]
+    return seconds["read"] + seconds["deform_call"] + seconds["write"]
+
+
 def failure(name, verb, error):
     """One sentence: object `name` was not <verb> because of `error`."""
     message = str(error).strip().rstrip(".")

@@ -26,15 +26,27 @@ def source_object(obj):
     return source if source is not None and source.type == 'MESH' and source != obj else obj
 
 
-def subdivided_copy(obj, mesh, labels, levels, scheme):
-    """(copy, its MeshArrays, its Labels) from the object's MeshArrays and Labels;
-    ValueError, with nothing created, if it cannot be made."""
+def check_copy_name(obj):
+    """ValueError if the name of obj's copy is taken by an object that is not its copy."""
     name = obj.name + COPY_SUFFIX
     copy = bpy.data.objects.get(name)
     if copy is not None and copy.get(SOURCE_PROPERTY) != obj.name:
         raise ValueError(f"an object named '{name}' exists already and is not its subdivided copy")
-    refined = refine(mesh.vertices, mesh.face_indices, mesh.face_sizes, labels.values,
-                     levels=levels, scheme=scheme.lower())
+
+
+def refine_mesh(mesh, labels, levels, scheme):
+    """The native refinement of MeshArrays `mesh` carrying `labels` (Labels). Touches no
+    Blender data: may run on a worker thread."""
+    return refine(mesh.vertices, mesh.face_indices, mesh.face_sizes, labels.values,
+                  levels=levels, scheme=scheme.lower())
+
+
+def subdivided_copy(obj, refined, labels, levels, scheme):
+    """(copy, its MeshArrays, its Labels) from refine_mesh's result for the object's mesh
+    and Labels; ValueError, with nothing created, if it cannot be made."""
+    check_copy_name(obj)
+    name = obj.name + COPY_SUFFIX
+    copy = bpy.data.objects.get(name)
     parents = np.asarray(refined["parent_face"])
     data = new_mesh(name, refined["vertices"], refined["face_indices"], refined["face_sizes"])
     try:

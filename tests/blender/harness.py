@@ -101,6 +101,15 @@ def add_face_maps(obj, labels, names):
             obj.face_maps.new(name=name).add(faces.tolist())
 
 
+def face_map_of_face(obj):
+    """Each face's face map name, or None."""
+    indices = np.full(len(obj.data.polygons), -1, dtype=np.int32)
+    if len(obj.data.face_maps):
+        obj.data.face_maps[0].data.foreach_get("value", indices)
+    names = [face_map.name for face_map in obj.face_maps]
+    return [names[i] if i >= 0 else None for i in indices]
+
+
 def add_attribute(mesh, name, kind, values):
     attribute = mesh.attributes.new(name, kind, 'FACE')
     attribute.data.foreach_set("value", np.asarray(values))

@@ -10,12 +10,12 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from harness import (  # noqa: E402
-    add_attribute, add_face_maps, arrays, cube_with_nine_faces_a_side, deform, enable_addon, key_figures,
-    key_names, nearest_axis_labels, report, run_tests, select_only, uv_sphere)
+    add_attribute, add_face_maps, arrays, cube_with_nine_faces_a_side, deform, enable_addon, face_map_of_face,
+    key_figures, key_names, nearest_axis_labels, report, run_tests, select_only, uv_sphere)
 
 polycube = enable_addon()
 from polycube.label_cache import label_summary  # noqa: E402
-from polycube.label_colours import LABEL_COLOURS  # noqa: E402
+from polycube.label_colours import LABEL_COLOURS, NEAREST_COLOURS  # noqa: E402
 from polycube.validation import load_validation  # noqa: E402
 
 NAMES = polycube.polycube_native.LABEL_NAMES
@@ -30,15 +30,6 @@ def _int_attribute(obj, name):
     values = np.empty(len(obj.data.polygons), dtype=np.int32)
     obj.data.attributes[name].data.foreach_get("value", values)
     return values
-
-
-def _face_map_of_face(obj):
-    """Each face's face map name, or None."""
-    indices = np.full(len(obj.data.polygons), -1, dtype=np.int32)
-    if len(obj.data.face_maps):
-        obj.data.face_maps[0].data.foreach_get("value", indices)
-    names = [face_map.name for face_map in obj.face_maps]
-    return [names[i] if i >= 0 else None for i in indices]
 
 
 def _selected_faces(obj):
@@ -67,7 +58,7 @@ def test_auto_label_writes_the_attribute_and_face_maps():
     assert sorted(np.unique(labels).tolist()) == list(range(6))
     # One face map per label, named +X ... -Z, holding exactly the faces of that label.
     assert sorted(face_map.name for face_map in sphere.face_maps) == sorted(NAMES)
-    maps = _face_map_of_face(sphere)
+    maps = face_map_of_face(sphere)
     assert maps == [NAMES[label] for label in labels]
     assert polycube.labels.read_labels(sphere).source == "attribute polycube_label"
     # The labels were validated on the way: the sidebar's figures are there.
@@ -90,7 +81,7 @@ def test_a_second_run_replaces_only_its_own_face_maps():
 
     labels = _int_attribute(sphere, "polycube_label")
     assert np.array_equal(labels, _expected_auto_labels(sphere))
-    maps = _face_map_of_face(sphere)
+    maps = face_map_of_face(sphere)
     assert maps[:3] == ["Notes"] * 3 and maps.count("Notes") == 3  # the user's map, untouched
     assert maps[3:] == [NAMES[label] for label in labels[3:]]
     names = [face_map.name for face_map in sphere.face_maps]
@@ -234,6 +225,29 @@ def test_label_colours_match_the_labels_and_leave_the_users_colours_alone():
     now = np.empty(len(painted), dtype=np.float32)
     mesh.color_attributes["Paint"].data.foreach_get("color", now)
     assert np.array_equal(now, painted)
+
+
+def test_label_colours_paint_unlabelled_faces_their_nearest_axis_pale():
+    sphere = uv_sphere()
+    nearest = nearest_axis_labels(sphere)
+    stored = nearest.copy()
+    stored[::3] = -1  # every third face unlabelled
+    stored[1::6] = 4  # and some labelled +Z, where the nearest axis is another
+    add_attribute(sphere.data, "polycube_label", 'INT', stored.astype(np.int32))
+    select_only(sphere)
+    assert bpy.ops.object.polycube_label_colours() == {'FINISHED'}
+    mesh = sphere.data
+    values = np.empty(len(mesh.loops) * 4, dtype=np.float32)
+    mesh.color_attributes["polycube_label_colour"].data.foreach_get("color", values)
+    starts = np.empty(len(mesh.polygons), dtype=np.int32)
+    mesh.polygons.foreach_get("loop_start", starts)
+    shown = values.reshape(-1, 4)[starts]
+    expected = np.where((stored < 0)[:, None], NEAREST_COLOURS[nearest], LABEL_COLOURS[stored])
+    assert np.abs(shown - expected).max() < 0.01
+    # Pale: every pale color is far from every label color, and lighter than its own.
+    distances = np.abs(NEAREST_COLOURS[:, None, :3] - LABEL_COLOURS[None, :, :3]).max(axis=2)
+    assert distances.min() > 0.15, distances
+    assert (NEAREST_COLOURS[:, :3].sum(axis=1) > LABEL_COLOURS[:, :3].sum(axis=1) + 0.5).all()
 
 
 def test_label_source_automatic_on_an_unlabelled_sphere():

@@ -11,13 +11,13 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from harness import (  # noqa: E402
-    add_attribute, add_face_maps, cube_with_nine_faces_a_side, deform, enable_addon, nearest_axis_labels,
-    report, run_tests, select_only, uv_sphere)
+    add_attribute, add_face_maps, cube_with_nine_faces_a_side, deform, enable_addon, face_map_of_face,
+    nearest_axis_labels, report, run_tests, select_only, uv_sphere)
 
 polycube = enable_addon()
 from polycube.label_cache import label_summary  # noqa: E402
-from polycube.label_colours import LABEL_COLOURS  # noqa: E402
-from polycube.labels import read_labels  # noqa: E402
+from polycube.label_colours import LABEL_COLOURS, NEAREST_COLOURS  # noqa: E402
+from polycube.labels import read_labels, write_face_maps, write_label_attribute  # noqa: E402
 
 NAMES = polycube.polycube_native.LABEL_NAMES
 
@@ -47,6 +47,11 @@ def _select_faces_in_edit_mode(obj, faces):
         bm.faces[f].select_set(True)
     bmesh.update_edit_mesh(obj.data)
     assert [face.index for face in bm.faces if face.select] == sorted(faces)
+
+
+def _face_map_labels(obj):
+    """The label each face's face map names (-1: in none)."""
+    return np.array([NAMES.index(name) if name is not None else -1 for name in face_map_of_face(obj)])
 
 
 def _selected_faces(obj):
@@ -109,6 +114,8 @@ def test_assign_label_in_edit_mode_colors_and_undo():
     # Byte colors round to 1/255 in sRGB.
     assert np.abs(colours[chosen] - LABEL_COLOURS[5]).max() < 0.01
     assert np.abs(colours - LABEL_COLOURS[expected]).max() < 0.01
+    # Blender 3.x: the face maps moved with the attribute.
+    assert _face_map_labels(sphere).tolist() == expected.tolist()
 
     bpy.ops.object.mode_set(mode='EDIT')
     bpy.ops.ed.undo()
@@ -116,6 +123,7 @@ def test_assign_label_in_edit_mode_colors_and_undo():
     sphere = bpy.data.objects["Sphere"]
     assert "polycube_label" not in sphere.data.attributes
     assert read_labels(sphere).values.tolist() == labels.tolist()
+    assert _face_map_labels(sphere).tolist() == labels.tolist()
 
     select_only(sphere)
     bpy.ops.object.mode_set(mode='EDIT')
@@ -124,6 +132,32 @@ def test_assign_label_in_edit_mode_colors_and_undo():
     bpy.ops.object.mode_set(mode='OBJECT')
     values = _labels_attribute(sphere)
     assert values[7] == -1 and np.array_equal(np.delete(values, 7), np.delete(labels, 7))
+    assert _face_map_labels(sphere).tolist() == values.tolist()
+    # A cleared face shows the axis the solver gives it, pale.
+    assert np.abs(_face_colours(sphere)[7] - NEAREST_COLOURS[labels[7]]).max() < 0.01
+
+
+def test_assign_label_keeps_our_face_maps_and_leaves_the_users():
+    bpy.ops.mesh.primitive_cube_add()
+    cube = bpy.context.active_object
+    labels = nearest_axis_labels(cube)  # one face a label
+    write_label_attribute(cube.data, labels)
+    write_face_maps(cube, labels)
+    notes = int(np.flatnonzero(labels == 2)[0])  # the +Y face goes into a map of the user's
+    cube.face_maps.new(name="Notes").add([notes])
+    select_only(cube)
+    bpy.ops.object.mode_set(mode='EDIT')
+    plus_x, minus_x = (int(np.flatnonzero(labels == label)[0]) for label in (0, 1))
+    _select_faces_in_edit_mode(cube, [plus_x, notes])
+    assert bpy.ops.mesh.polycube_assign_label(label='-X') == {'FINISHED'}
+    bpy.ops.object.mode_set(mode='OBJECT')
+    expected = labels.copy()
+    expected[[plus_x, notes]] = 1
+    assert _labels_attribute(cube).tolist() == expected.tolist()
+    maps = face_map_of_face(cube)
+    assert maps[notes] == "Notes" and maps[plus_x] == maps[minus_x] == "-X", maps
+    # The +X map lost its only face: gone, as Auto Label leaves no empty map of ours.
+    assert sorted(face_map.name for face_map in cube.face_maps) == sorted(["-X", "+Z", "-Y", "-Z", "Notes"])
 
 
 def test_assign_label_needs_edit_mode_and_a_selection():

@@ -55,9 +55,26 @@ def test_bl_info_and_manifest_agree():
     assert manifest["type"] == "add-on"
     assert ".".join(map(str, polycube.bl_info["version"])) == manifest["version"]
     assert polycube.bl_info["blender"] == (3, 4, 0)
-    assert manifest["website"].startswith("https://") and "#blender-add-on" in manifest["website"]
-    assert polycube.bl_info["doc_url"] == manifest["website"]
-    assert polycube.bl_info["tracker_url"].startswith("https://")
+    # Both name the README's section; the add-on made bl_info's a file:// address of its copy.
+    assert manifest["website"] == "README.md#blender-add-on"
+    assert polycube.help_links.resolve({"doc_url": manifest["website"]}, INSTALLED)["doc_url"] == \
+        polycube.bl_info["doc_url"]
+
+
+def test_documentation_and_bug_report_open_the_readme_inside_the_addon():
+    readme = os.path.join(INSTALLED, "README.md")
+    with open(readme, encoding="utf-8") as file:
+        text = file.read()
+    with open(os.path.join(os.environ["POLYCUBE_ROOT"], "README.md"), encoding="utf-8") as file:
+        assert file.read() == text
+    # The sections the addresses name exist (GitHub-style anchors of the headings).
+    assert "\n## Blender add-on\n" in text and "\n### Reporting problems\n" in text
+    # What the Preferences' buttons open: the add-on list's entry, as Blender 3.x makes it.
+    listed = addon_utils.module_bl_info(
+        next(module for module in addon_utils.modules(refresh=False) if module.__name__ == "polycube"))
+    for info in (polycube.bl_info, listed):
+        assert info["doc_url"] == f"file://{readme}#blender-add-on", info["doc_url"]
+        assert info["tracker_url"] == f"file://{readme}#reporting-problems", info["tracker_url"]
 
 
 def test_everything_registered():

@@ -9,7 +9,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from harness import (  # noqa: E402
-    deform, enable_addon, key_coordinates, key_names, report, run_tests, select_only, vertices)
+    add_attribute, deform, enable_addon, key_coordinates, key_names, report, run_tests, select_only, vertices)
 
 polycube = enable_addon()
 
@@ -26,16 +26,24 @@ def _suzanne_subdivided_twice():
     return monkey
 
 
+def _sphere_labelled_plus_z():
+    """Every face asked to face +Z: folds no iteration can undo, so the run stops moving."""
+    bpy.ops.mesh.primitive_uv_sphere_add()
+    sphere = bpy.context.active_object
+    add_attribute(sphere.data, "polycube_label", 'INT', np.full(len(sphere.data.polygons), 4, np.int32))
+    return sphere
+
+
 def test_a_run_that_stops_moving_stops_without_identical_keys():
-    monkey = _suzanne_subdivided_twice()
-    deform(monkey, iterations=60)  # nearest-axis labels: Suzanne's cannot be flattened
-    result = report(monkey)
+    sphere = _sphere_labelled_plus_z()
+    deform(sphere, iterations=60)
+    result = report(sphere)
     assert result["stalled_at"] < 60 and result["iterations"] == result["stalled_at"], result
     assert result["moved_until"] == result["kept_iterations"][-1] < result["stalled_at"]
     assert result["stalled_at"] - result["moved_until"] == polycube.progress_watch.STILL_ITERATIONS
     # Every key shows a different shape.
-    diagonal = np.linalg.norm(np.ptp(vertices(monkey), axis=0))
-    shapes = [vertices(monkey)] + [key_coordinates(monkey, name) for name in key_names(monkey)[1:]]
+    diagonal = np.linalg.norm(np.ptp(vertices(sphere), axis=0))
+    shapes = [vertices(sphere)] + [key_coordinates(sphere, name) for name in key_names(sphere)[1:]]
     steps = [np.abs(b - a).max() for a, b in zip(shapes, shapes[1:])]
     assert min(steps) > polycube.progress_watch.STILL_FRACTION * diagonal, steps
     assert polycube.report.outcome(result) == "no progress"
@@ -43,7 +51,18 @@ def test_a_run_that_stops_moving_stops_without_identical_keys():
     refused = [attempt for attempt in result["flatten_attempts"] if not attempt["kept"]]
     assert refused and refused[-1]["folds_left"] > 0, result["flatten_attempts"]
     assert any(f"would leave {refused[-1]['folds_left']} folded faces" in line for line in hint), hint
-    assert hint[-1] == "Every face took its nearest axis: try Auto Label", hint
+    assert hint[-1] == "Try Auto Label, or relabel the unconverged faces", hint
+
+
+def test_advice_for_nearest_axis_labels_suggests_auto_label():
+    # A run that stalled on nearest-axis labels (Suzanne subdivided twice did, before the
+    # solver untangled flat charts): the report as the operator stores it.
+    stalled = {"converged": False, "stopped": True, "stalled_at": 17, "moved_until": 9, "labelled_faces": 0,
+               "flatten_attempts": [{"kept": 0, "folds_left": 410, "collapsed_area": 0.2}]}
+    assert polycube.report.advice(stalled) == [
+        "The mesh stopped moving after iteration 9; stopped at iteration 17",
+        "Flat charts would leave 410 folded faces (and collapse 20% of the surface)",
+        "Every face took its nearest axis: try Auto Label"]
 
 
 def test_advice_after_auto_label_does_not_suggest_auto_label():

@@ -51,6 +51,7 @@ panel_draws = _record_draws(bpy.types.VIEW3D_PT_polycube, _object_and_report)
 label_draws = _record_draws(bpy.types.VIEW3D_PT_polycube_labels, lambda context: context.mode)
 pie_draws = _record_draws(bpy.types.VIEW3D_MT_polycube_label_pie, lambda context: context.mode)
 PIE_SCREENSHOT = os.path.join(ROOT, "build", "ui", "polycube-edit-mode-pie.png")
+REDO_SCREENSHOT = os.path.join(ROOT, "build", "ui", "polycube-redo.png")
 
 
 def _view3d():
@@ -142,7 +143,7 @@ def test_long_run_keeps_blender_responsive_and_esc_keeps_iterations():
     counts = []
     for _ in range(400):  # each step is Blender's event loop coming back to this timer
         counts.append(len(key_names(big)))
-        if counts[-1] > 6:
+        if counts[-1] > 15:
             break
         yield 0.05
     assert report(big) is None, "the run ended by itself"
@@ -159,6 +160,89 @@ def test_long_run_keeps_blender_responsive_and_esc_keeps_iterations():
     assert key_names(big)[1:] == [f"Polycube {k:06d}" for k in kept]
     assert kept == sorted(set(kept)) and kept[-1] <= result["iterations"] and len(kept) >= counts[-1] - 1
     assert big.data.shape_keys.key_blocks[-1].value == 1.0
+
+
+def test_labels_and_subdivision_run_off_the_ui_thread_and_esc_changes_nothing():
+    sphere = uv_sphere("Prepared sphere")
+    select_only(sphere)
+    # A labeller and a refinement that work until the test lets them finish, as on a
+    # detailed model; each notes whether it ran on Blender's main thread.
+    label_source, subdivide = polycube.label_source, polycube.subdivide
+    labeller, refiner = label_source.automatic_labels, subdivide.refine
+    release, on_main_thread = threading.Event(), []
+
+    def held(function):
+        def call(*args, **kwargs):
+            on_main_thread.append(threading.current_thread() is threading.main_thread())
+            release.wait(30)
+            return function(*args, **kwargs)
+        return call
+
+    label_source.automatic_labels, subdivide.refine = held(labeller), held(refiner)
+    settings = dict(label_source='AUTO', subdivide=True, iterations=100)
+    try:
+        with _override():
+            assert bpy.ops.object.polycube_deform('INVOKE_DEFAULT', **settings) == {'RUNNING_MODAL'}
+        for _ in range(5):  # Blender's event loop goes on while the labeller works
+            yield 0.1
+        assert on_main_thread == [False], on_main_thread
+        window = _view3d()[0]
+        window.event_simulate(type='ESC', value='PRESS')
+        window.event_simulate(type='ESC', value='RELEASE')
+        yield 0.3
+        release.set()  # labeller and refinement end after Esc: their results are dropped
+        yield 1.0
+        assert on_main_thread == [False, False], on_main_thread
+        assert "Prepared sphere polycube" not in bpy.data.objects
+        assert sphere.data.shape_keys is None and report(sphere) is None
+        assert "polycube_label" not in sphere.data.attributes
+    finally:
+        release.set()
+        label_source.automatic_labels, subdivide.refine = labeller, refiner
+
+    select_only(sphere)
+    with _override():
+        assert bpy.ops.object.polycube_deform('INVOKE_DEFAULT', **settings) == {'RUNNING_MODAL'}
+    copy = lambda: bpy.data.objects.get("Prepared sphere polycube")  # noqa: E731
+    yield from _wait_until(lambda: copy() is not None and report(copy()) is not None, "the prepared run")
+    result = report(copy())
+    assert result["label_source"] == "automatic, subdivided (bilinear x1)", result["label_source"]
+    # Bilinear subdivision splits each n-sided face into n quads: a face per corner.
+    assert len(copy().data.polygons) == len(sphere.data.loops)
+    assert sphere.data.shape_keys is None
+
+
+def test_redo_panel_says_how_long_a_change_takes():
+    sphere = labelled_sphere("Redo sphere")
+    for obj in bpy.context.scene.objects:
+        obj.hide_set(obj.type == 'MESH' and obj != sphere)
+    select_only(sphere)
+    with _override():
+        assert bpy.ops.object.polycube_deform('INVOKE_DEFAULT', iterations=200) == {'RUNNING_MODAL'}
+    yield from _wait_until(lambda: report(sphere) is not None, "the modal run")
+    yield 0.2
+    operator = bpy.context.window_manager.operators[-1]
+    assert operator.bl_idname == "OBJECT_OT_polycube_deform", operator.bl_idname
+    expected = polycube.report.work_seconds(report(sphere))
+    assert 0 < expected and abs(operator.properties.last_seconds - expected) < 1e-4, \
+        (operator.properties.last_seconds, expected)
+    # F9 opens the redo panel as a popup: it draws the operator with the estimate.
+    estimates, estimate_text = [], polycube.redo_estimate.estimate_text
+    polycube.redo_estimate.estimate_text = lambda seconds: estimates.append(estimate_text(seconds)) or estimates[-1]
+    try:
+        window, _, region, _ = _view3d()
+        x, y = region.x + region.width // 2, region.y + region.height // 2
+        window.event_simulate(type='MOUSEMOVE', value='NOTHING', x=x, y=y)
+        window.event_simulate(type='F9', value='PRESS', x=x, y=y)
+        window.event_simulate(type='F9', value='RELEASE', x=x, y=y)
+        yield from _wait_until(lambda: estimates, "the redo panel's estimate")
+        _screenshot(REDO_SCREENSHOT)
+        window.event_simulate(type='ESC', value='PRESS', x=x, y=y)
+        window.event_simulate(type='ESC', value='RELEASE', x=x, y=y)
+        yield 0.2
+    finally:
+        polycube.redo_estimate.estimate_text = estimate_text
+    assert estimates[-1] == f"Each change runs it again: about {expected:.1f} s", estimates[-1]
 
 
 def test_panel_shows_the_last_run_and_screenshot():
@@ -232,15 +316,16 @@ def test_edit_mode_panel_and_label_pie():
     x, y = region.x + region.width // 4, region.y + region.height // 2  # left of the sphere
     window.event_simulate(type='MOUSEMOVE', value='NOTHING', x=x, y=y)
     yield 0.2
-    bpy.context.preferences.view.pie_animation_timeout = 0  # drawn whole at once, for the screenshot
     # The documented shortcut opens the pie.
     window.event_simulate(type='LEFT_SHIFT', value='PRESS', x=x, y=y)
     window.event_simulate(type='LEFT_ALT', value='PRESS', x=x, y=y, shift=True)
     window.event_simulate(type='L', value='PRESS', x=x, y=y, shift=True, alt=True)
     yield from _wait_until(lambda: pie_draws, "the label pie menu after Shift Alt L")
-    # Lean towards +X, as a user choosing it does (the pie redraws with it lit).
-    window.event_simulate(type='MOUSEMOVE', value='NOTHING', x=x + 40, y=y, shift=True, alt=True)
-    yield 1.0
+    # Lean towards +X, as a user choosing it does (the pie redraws with it lit). The pie
+    # unfolds and fades in as events reach it: keep them coming for longer than that takes.
+    for step in range(10):
+        window.event_simulate(type='MOUSEMOVE', value='NOTHING', x=x + 40 + step, y=y, shift=True, alt=True)
+        yield 0.1
     _screenshot(PIE_SCREENSHOT)
     # Esc closes the pie without choosing; only then let go of the keys.
     window.event_simulate(type='ESC', value='PRESS', x=x, y=y)
@@ -282,9 +367,14 @@ def test_auto_label_runs_modal_and_esc_leaves_the_labels():
 
     small = uv_sphere("Labelled sphere")
     select_only(small)
+    started = time.monotonic()
     with _override():
         assert bpy.ops.object.polycube_auto_label('INVOKE_DEFAULT') == {'RUNNING_MODAL'}
     yield from _wait_until(lambda: "polycube_label" in small.data.attributes, "the modal Auto Label")
+    # The redo panel's estimate: the labeller's time, within the run's.
+    operator = bpy.context.window_manager.operators[-1]
+    assert operator.bl_idname == "OBJECT_OT_polycube_auto_label", operator.bl_idname
+    assert 0 < operator.properties.last_seconds <= time.monotonic() - started, operator.properties.last_seconds
     values = np.empty(len(small.data.polygons), dtype=np.int32)
     small.data.attributes["polycube_label"].data.foreach_get("value", values)
     mesh = polycube.mesh_arrays.read_mesh_arrays(small.data)
@@ -294,6 +384,8 @@ def test_auto_label_runs_modal_and_esc_leaves_the_labels():
 
 TESTS = [test_sidebar_tab_draws_the_panel, test_button_run_is_modal_and_pushes_its_undo_step,
          test_long_run_keeps_blender_responsive_and_esc_keeps_iterations,
+         test_labels_and_subdivision_run_off_the_ui_thread_and_esc_changes_nothing,
+         test_redo_panel_says_how_long_a_change_takes,
          test_panel_shows_the_last_run_and_screenshot, test_edit_mode_panel_and_label_pie,
          test_auto_label_runs_modal_and_esc_leaves_the_labels]
 wanted = os.environ.get("POLYCUBE_TEST_FILTER", "")
