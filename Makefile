@@ -10,7 +10,8 @@ VERSION := $(shell sed -n 's/^version *= *"\(.*\)"/\1/p' blender_manifest.toml 2
 # Debian packages the build, the tests and the demo need.
 DEB_PACKAGES := cmake g++ make pkg-config libeigen3-dev pybind11-dev python3-dev libboost-graph-dev \
   python3-numpy python3-pytest python3-scipy libgtest-dev libosd-dev \
-  libsuitesparse-dev libopenblas0-pthread libcgal-demo blender xvfb xauth zip clang libclang-rt-dev
+  libsuitesparse-dev libopenblas0-pthread libcgal-demo blender xvfb xauth zip clang libclang-rt-dev \
+  nlohmann-json3-dev libcli11-dev
 
 MESHES := $(BUILD)/data/meshes
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)

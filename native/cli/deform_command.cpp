@@ -76,9 +76,9 @@ int deform_command(const std::vector<std::string>& args) {
   const DeformResult result = deform(mesh, labels, options, show_progress);
   if (progress && result.iterations > 0) std::fprintf(stderr, "\n");
 
-  JsonWriter json = deform_report(mesh, result, options);
-  json.add("peak_mib", peak_resident_mib());
-  const std::string report = json.str();
+  Json json = deform_report(mesh, result, options);
+  json["peak_mib"] = peak_resident_mib();
+  const std::string report = json_text(json);
   OutputFiles outputs;
   if (arguments.has("output")) {
     const std::string path = arguments.get("output", "");
@@ -89,7 +89,7 @@ int deform_command(const std::vector<std::string>& args) {
     outputs.stage(path, labels_file_text(path, result.labels));
   }
   if (arguments.has("report")) outputs.stage(arguments.get("report", ""), report + "\n");
-  std::printf("%s\n", report.c_str());
+  print_line(report);
   flush_stdout();
   outputs.commit();
   return 0;

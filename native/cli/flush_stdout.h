@@ -3,7 +3,14 @@
 // exiting 0 with the report lost.
 #pragma once
 
+#include <string_view>
+
 namespace polycube {
+
+// Writes text and a newline to stdout; throws Error saying why when the write
+// fails (a report longer than stdout's buffer fails here, while errno still
+// says why).
+void print_line(std::string_view text);
 
 // Flushes stdout; throws Error saying why when it or an earlier write failed.
 // Commands call it before committing their files (output_files.h), so a

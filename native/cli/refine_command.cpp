@@ -5,6 +5,7 @@
 #include "cli/commands.h"
 #include "cli/flush_stdout.h"
 #include "refine/refine.h"
+#include "io/json.h"
 #include "io/labels_io.h"
 #include "io/output_files.h"
 #include "io/read_mesh.h"
@@ -35,8 +36,8 @@ int refine_command(const std::vector<std::string>& args) {
   OutputFiles outputs;
   outputs.stage(output, mesh_file_bytes(output, refined.mesh.vertices, refined.mesh.faces));
   if (!labels.empty()) outputs.stage(output + ".labels", labels_file_text(output + ".labels", refined.labels));
-  std::printf("{\"vertices\": %ld, \"faces\": %d}\n", static_cast<long>(refined.mesh.vertices.rows()),
-              refined.mesh.faces.count());
+  const Json figures = {{"vertices", refined.mesh.vertices.rows()}, {"faces", refined.mesh.faces.count()}};
+  print_line(json_text(figures, -1));
   flush_stdout();
   outputs.commit();
   return 0;

@@ -4,6 +4,7 @@
 #include "cli/commands.h"
 #include "cli/flush_stdout.h"
 #include "cli/use_input.h"
+#include "io/json.h"
 #include "io/output_files.h"
 #include "io/write_mesh.h"
 #include "use/quad_remesh.h"
@@ -29,10 +30,12 @@ int remesh_command(const std::vector<std::string>& args) {
   const std::string output = arguments.get("output", "");
   OutputFiles outputs;  // in place only once the figures reached stdout too
   outputs.stage(output, mesh_file_bytes(output, remesh.mesh.vertices, remesh.mesh.faces));
-  std::printf("{\"vertices\": %ld, \"quads\": %d, \"irregular_vertices\": %d, \"open_edges\": %d, "
-              "\"grid_spacing\": %.9g}\n",
-              static_cast<long>(remesh.mesh.vertices.rows()), remesh.mesh.faces.count(), remesh.irregular_vertices,
-              remesh.open_edges, remesh.grid_spacing);
+  const Json figures = {{"vertices", remesh.mesh.vertices.rows()},
+                        {"quads", remesh.mesh.faces.count()},
+                        {"irregular_vertices", remesh.irregular_vertices},
+                        {"open_edges", remesh.open_edges},
+                        {"grid_spacing", remesh.grid_spacing}};
+  print_line(json_text(figures, -1));
   flush_stdout();
   outputs.commit();
   return 0;

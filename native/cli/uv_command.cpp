@@ -4,6 +4,7 @@
 #include "cli/commands.h"
 #include "cli/flush_stdout.h"
 #include "cli/use_input.h"
+#include "io/json.h"
 #include "io/output_files.h"
 #include "io/write_mesh.h"
 #include "use/polycube_uv.h"
@@ -38,11 +39,13 @@ int uv_command(const std::vector<std::string>& args) {
   OutputFiles outputs;  // in place only once the figures reached stdout too
   outputs.stage(output, obj_with_uvs_bytes(output, input.mesh.vertices, input.mesh.faces, uv.uvs));
   const UvFigures figures = uv_figures(input.mesh, uv.uvs);
-  std::printf(
-      "{\"islands\": %d, \"angle_distortion\": %.6g, \"area_distortion\": %.6g, \"collapsed_area\": %.6g, "
-      "\"flipped\": %d, \"seam_length\": %.6g}\n",
-      uv.islands, figures.angle_distortion, figures.area_distortion, figures.collapsed_area, figures.flipped,
-      figures.seam_length);
+  const Json report = {{"islands", uv.islands},
+                       {"angle_distortion", figures.angle_distortion},
+                       {"area_distortion", figures.area_distortion},
+                       {"collapsed_area", figures.collapsed_area},
+                       {"flipped", figures.flipped},
+                       {"seam_length", figures.seam_length}};
+  print_line(json_text(report, -1));
   flush_stdout();
   outputs.commit();
   return 0;

@@ -4,6 +4,7 @@
 
 #include "cli/arguments.h"
 #include "cli/commands.h"
+#include "cli/flush_stdout.h"
 #include "cli/label_source.h"
 #include "labeller/auto_labels.h"
 #include "labels/axis.h"
@@ -50,13 +51,10 @@ int validate_command(const std::vector<std::string>& args) {
   const Orientation orient = orientation(mesh, &labels);
 
   if (arguments.has("json")) {
-    JsonWriter json;
-    json.add("faces", mesh.faces.count());
+    Json json = {{"faces", mesh.faces.count()}};
     add_validation(json, validation);
-    json.begin_object("orientation");
-    add_orientation(json, orient, true);
-    json.end();
-    std::printf("%s\n", json.str().c_str());
+    add_orientation(json["orientation"] = Json::object(), orient, true);
+    print_line(json_text(json));
   } else {
     warn_about_orientation(mesh, labels, flip);
     std::printf("%d faces, %d charts, %d chart boundaries, %d corners", mesh.faces.count(), validation.charts,

@@ -6,21 +6,16 @@
 #include <string>
 
 #include "deform/deform.h"
-#include "io/json_writer.h"
+#include "io/json.h"
 
 namespace polycube {
 
-// Adds the figures of section 4 as members of the innermost open object.
-void add_figures(JsonWriter& json, const Figures& figures);
+// Adds the figures of section 4 as members of the object json.
+void add_figures(Json& json, const Figures& figures);
 
 // vertices, faces, triangles, iterations, converged, stopped, unlabelled_faces,
-// variant, tolerance_deg, the figures, and seconds per phase. The root object
-// stays open, so a caller can add what only it knows (the program's memory).
-JsonWriter deform_report(const PolygonMesh& mesh, const DeformResult& result, const DeformOptions& options);
-
-inline std::string deform_report_json(const PolygonMesh& mesh, const DeformResult& result,
-                                      const DeformOptions& options) {
-  return deform_report(mesh, result, options).str();
-}
+// variant, tolerance_deg, the figures, and seconds per phase. A caller can add
+// what only it knows (the program's memory).
+Json deform_report(const PolygonMesh& mesh, const DeformResult& result, const DeformOptions& options);
 
 }  // namespace polycube

@@ -4,36 +4,36 @@
 
 namespace polycube {
 
-void add_validation(JsonWriter& json, const LabelValidation& v) {
-  json.add("valid", v.valid())
-      .add("realisable", v.realisable())
-      .add("charts", v.charts)
-      .add("boundaries", v.boundaries)
-      .add("corners", v.corners)
-      .add("unlabelled_faces", v.unlabelled_faces)
-      .begin_array("violations");
+void add_validation(Json& json, const LabelValidation& v) {
+  json["valid"] = v.valid();
+  json["realisable"] = v.realisable();
+  json["charts"] = v.charts;
+  json["boundaries"] = v.boundaries;
+  json["corners"] = v.corners;
+  json["unlabelled_faces"] = v.unlabelled_faces;
+  Json& violations = json["violations"] = Json::array();
   for (const LabelViolation& violation : v.violations)
-    json.begin_object()
-        .add("kind", violation_kind_name(violation.kind))
-        .add("chart", violation.chart)
-        .add("label", violation.label)
-        .add("label_name", kLabelNames[violation.label])
-        .add("others", violation.others)
-        .add("vertex", violation.vertex)
-        .add("faces", violation.faces)
-        .end();
-  json.end();
+    violations.push_back({{"kind", violation_kind_name(violation.kind)},
+                          {"chart", violation.chart},
+                          {"label", violation.label},
+                          {"label_name", kLabelNames[violation.label]},
+                          {"others", violation.others},
+                          {"vertex", violation.vertex},
+                          {"faces", violation.faces}});
 }
 
-void add_orientation(JsonWriter& json, const Orientation& o, bool with_labels) {
-  json.add("orientable", o.orientable)
-      .add("consistent", o.consistent)
-      .add("inconsistent_edges", o.inconsistent_edges)
-      .add("components", o.components)
-      .add("closed_components", o.closed_components)
-      .add("inward_components", o.inward_components)
-      .add("inward", o.inward());
-  if (with_labels) json.add("area_against_labels", o.area_against_labels).add("labels_opposite", o.labels_opposite);
+void add_orientation(Json& json, const Orientation& o, bool with_labels) {
+  json["orientable"] = o.orientable;
+  json["consistent"] = o.consistent;
+  json["inconsistent_edges"] = o.inconsistent_edges;
+  json["components"] = o.components;
+  json["closed_components"] = o.closed_components;
+  json["inward_components"] = o.inward_components;
+  json["inward"] = o.inward();
+  if (with_labels) {
+    json["area_against_labels"] = o.area_against_labels;
+    json["labels_opposite"] = o.labels_opposite;
+  }
 }
 
 }  // namespace polycube

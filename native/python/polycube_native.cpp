@@ -129,12 +129,12 @@ py::array_t<int> to_int_array(const std::vector<int>& v) {
   return py::array_t<int>(static_cast<py::ssize_t>(v.size()), v.data());
 }
 
-py::object json_loads(const std::string& text) { return py::module_::import("json").attr("loads")(text); }
+py::object json_loads(const Json& json) { return py::module_::import("json").attr("loads")(json_text(json, -1)); }
 
 py::dict figures_dict(const Figures& figures) {
-  JsonWriter json;
+  Json json = Json::object();
   add_figures(json, figures);
-  return json_loads(json.str(0));
+  return json_loads(json);
 }
 
 py::dict deform_py(const DoubleArray& vertices, const IntArray& face_indices, const IntArray& face_sizes,
@@ -169,7 +169,7 @@ py::dict deform_py(const DoubleArray& vertices, const IntArray& face_indices, co
   py::dict out;
   out["positions"] = to_numpy(result.positions);
   out["labels"] = to_int_array(result.labels);
-  py::dict report = json_loads(deform_report_json(mesh, result, options));
+  py::dict report = json_loads(deform_report(mesh, result, options));
   // The JSON report lists at most a thousand ids per face list (a file for people);
   // here every id is given, so a user interface can select all of them.
   report["unconverged_faces"] = to_int_array(result.unconverged_faces);
@@ -273,9 +273,9 @@ py::dict validate_labels_py(const DoubleArray& vertices, const IntArray& face_in
     py::gil_scoped_release release;
     validation = validate_labels(mesh, face_labels);
   }
-  JsonWriter json;
+  Json json = Json::object();
   add_validation(json, validation);
-  return json_loads(json.str(0));
+  return json_loads(json);
 }
 
 py::dict orientation_py(const DoubleArray& vertices, const IntArray& face_indices, const IntArray& face_sizes,
@@ -284,9 +284,9 @@ py::dict orientation_py(const DoubleArray& vertices, const IntArray& face_indice
   std::vector<int> face_labels;
   if (labels) face_labels = to_labels(*labels);
   const Orientation o = orientation(mesh, labels ? &face_labels : nullptr);
-  JsonWriter json;
+  Json json = Json::object();
   add_orientation(json, o, labels.has_value());
-  return json_loads(json.str(0));
+  return json_loads(json);
 }
 
 py::array_t<int> flip_labels_py(const IntArray& labels) { return to_int_array(flip_labels(to_labels(labels))); }
