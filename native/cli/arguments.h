@@ -1,31 +1,35 @@
-// A small command-line parser: positional inputs (one, or as many as the command takes) and `--name value` options
-// (or `--flag`), each checked against what the command accepts, so a typo is
-// an error rather than silently ignored.
+// The command line of one `polycube` command through CLI11 (Debian
+// libcli11-dev): the command declares its inputs and options on a CLI::App,
+// bound to its variables and with their help; parse_arguments parses them and
+// turns CLI11's failures into the one-sentence errors every command gives, so
+// a typo is an error rather than silently ignored.
+//
+//   CLI::App app{"Deforms the mesh into its polycube.", "polycube deform"};
+//   std::string input;
+//   int iterations = 100;
+//   app.add_option("IN", input, "the mesh")->required();
+//   app.add_option("--iterations", iterations, "iteration limit")->check(whole_number_at_least(0));
+//   if (!parse_arguments(app, args)) return 0;   // --help was printed
 #pragma once
 
-#include <map>
-#include <set>
 #include <string>
 #include <vector>
 
+#include <CLI/App.hpp>
+#include <CLI/Config.hpp>
+#include <CLI/Formatter.hpp>
+
 namespace polycube {
 
-class Arguments {
- public:
-  // args: everything after the command name. Throws Error on an unknown
-  // option, a missing value, a repeated option or a wrong number of inputs.
-  Arguments(const std::vector<std::string>& args, const std::set<std::string>& options_with_value,
-            const std::set<std::string>& flags = {}, size_t input_count = 1);
+// Checks on an option's text, refused with a sentence naming the value.
+CLI::Validator whole_number_at_least(int minimum);
+CLI::Validator number_at_least(double minimum);  // finite
 
-  const std::string& input(size_t k = 0) const { return inputs_.at(k); }
-  bool has(const std::string& name) const { return values_.count(name) > 0; }
-  std::string get(const std::string& name, const std::string& fallback) const;
-  int get_int(const std::string& name, int fallback, int minimum) const;
-  double get_double(const std::string& name, double fallback, double minimum) const;
-
- private:
-  std::vector<std::string> inputs_;
-  std::map<std::string, std::string> values_;
-};
+// Parses args (everything after the command's name) into app's options.
+// Returns false when --help or -h was given: app's help is then on stdout.
+// Throws Error on an unknown option, a missing or repeated value, a value a
+// check refuses, a missing required option, or a wrong number of inputs
+// (app's positional options).
+bool parse_arguments(CLI::App& app, const std::vector<std::string>& args);
 
 }  // namespace polycube

@@ -20,49 +20,58 @@
 
 namespace polycube {
 
-const char* const kDeformUsage =
-    "polycube deform IN.(off|obj|ply) [--labels nearest|auto|FILE] [--flip-labels] [--iterations N] [--tolerance DEG]\n"
-    "                [--variant robust|fixed|current] [--output OUT.(obj|off|ply)] [--output-labels LABELS.txt]\n"
-    "                [--start SHAPE] [--report REPORT.json]\n"
-    "  Deforms the mesh into its polycube and prints the quality figures.\n"
-    "  --labels      nearest (default): every face takes the axis nearest its normal;\n"
-    "                auto: the automatic labeller (see `polycube label`; --detail D, --compactness W);\n"
-    "                FILE: one label per face, 0..5 = +X,-X,+Y,-Y,+Z,-Z, -1 = nearest\n"
-    "  --flip-labels every label turned to its opposite: labels made for the other winding\n"
-    "  --iterations  iteration limit (default 100)\n"
-    "  --tolerance   stop when every face is within DEG degrees of its axis (default 0.5; 0 = never)\n"
-    "  --variant     robust (default): never folds a face; fits each face's input shape, then makes\n"
-    "                every chart exactly flat (slivers that would fold collapse; flat_iteration), or,\n"
-    "                where the labels ask too much (flatten_attempts), goes on with the paper's step\n"
-    "                and relabels faces that cannot reach their axis (relabelled_faces); faces\n"
-    "                still above the tolerance: unconverged_faces\n"
-    "                fixed: the paper's method, Laplacian of the input, factorised once;\n"
-    "                current: the paper's method, Laplacian rebuilt every iteration, as in the paper\n"
-    "  --start       a mesh with the same vertices and faces to start from (`polycube label --straightened`)\n"
-    "  --output      the deformed mesh (same vertices and faces as the input)\n"
-    "  --output-labels  the labels the run ended with (the given ones, and any the solver changed)\n"
-    "  --report      the figures and timings as JSON\n";
-
 int deform_command(const std::vector<std::string>& args) {
-  const Arguments arguments(args, {"labels", "iterations", "tolerance", "variant", "output", "output-labels", "report", "compactness", "detail", "start"},
-                            {"flip-labels"});
+  CLI::App app{"Deforms the mesh into its polycube and prints the quality figures.", "polycube deform"};
+  std::string input, start, output, output_labels, report_path, variant = variant_name(DeformOptions().variant);
+  LabelSource source;
   DeformOptions options;
-  options.iterations = arguments.get_int("iterations", options.iterations, 0);
-  options.tolerance_deg = arguments.get_double("tolerance", options.tolerance_deg, 0.0);
-  options.variant = parse_variant(arguments.get("variant", variant_name(options.variant)));
+  app.add_option("IN", input, "the mesh (.off, .obj, .ply)")->required()->type_name("");
+  app.add_option("--labels", source.labels,
+                 "nearest (default): every face takes the axis nearest its normal;\n"
+                 "auto: the automatic labeller (see `polycube label`; --detail, --compactness);\n"
+                 "FILE: one label per face, 0..5 = +X,-X,+Y,-Y,+Z,-Z, -1 = nearest")
+      ->type_name("nearest|auto|FILE");
+  app.add_flag("--flip-labels", source.flip, "every label turned to its opposite: labels made for the other winding");
+  add_auto_label_options(app, source);
+  app.add_option("--iterations", options.iterations, "iteration limit (default 100)")
+      ->type_name("N")
+      ->check(whole_number_at_least(0));
+  app.add_option("--tolerance", options.tolerance_deg,
+                 "stop when every face is within DEG degrees of its axis (default 0.5; 0 = never)")
+      ->type_name("DEG")
+      ->check(number_at_least(0.0));
+  app.add_option("--variant", variant,
+                 "robust (default): never folds a face; fits each face's input shape, then makes\n"
+                 "every chart exactly flat (slivers that would fold collapse; flat_iteration), or,\n"
+                 "where the labels ask too much (flatten_attempts), goes on with the paper's step\n"
+                 "and relabels faces that cannot reach their axis (relabelled_faces); faces still\n"
+                 "above the tolerance: unconverged_faces.\n"
+                 "fixed: the paper's method, Laplacian of the input, factorised once;\n"
+                 "current: the paper's method, Laplacian rebuilt every iteration, as in the paper")
+      ->type_name("robust|fixed|current");
+  app.add_option("--start", start, "a mesh with the same vertices and faces to start from\n"
+                                   "(`polycube label --straightened`)")
+      ->type_name("SHAPE");
+  app.add_option("--output", output, "the deformed mesh, .obj, .off or .ply (same vertices and faces)")
+      ->type_name("OUT");
+  app.add_option("--output-labels", output_labels, "the labels the run ended with (the given ones, and any the\n"
+                                                   "solver changed)")
+      ->type_name("LABELS.txt");
+  bool plain = false;
+  add_plain_labels_option(app, plain);
+  app.add_option("--report", report_path, "the figures and timings as JSON")->type_name("REPORT.json");
+  if (!parse_arguments(app, args)) return 0;
+  options.variant = parse_variant(variant);
 
-  const PolygonMesh mesh = read_mesh(arguments.input());
-  if (arguments.has("start")) {
-    const PolygonMesh start = read_mesh(arguments.get("start", ""));
-    if (start.vertices.rows() != mesh.vertices.rows() || start.faces.indices != mesh.faces.indices)
+  const PolygonMesh mesh = read_mesh(input);
+  if (app.count("--start")) {
+    const PolygonMesh shape = read_mesh(start);
+    if (shape.vertices.rows() != mesh.vertices.rows() || shape.faces.indices != mesh.faces.indices)
       throw Error("--start must have the same vertices and faces as the input");
-    options.start = start.vertices;
+    options.start = shape.vertices;
   }
-  const std::string labels_source = arguments.get("labels", "nearest");
-  const bool flip = arguments.has("flip-labels");
-  const std::vector<int> labels = labels_from_source(
-      labels_source, mesh, auto_label_options(arguments), flip);
-  warn_about_orientation(mesh, labels, flip);
+  const std::vector<int> labels = labels_from_source(source, mesh);
+  warn_about_orientation(mesh, labels, source.flip);
 
   // Progress only on a terminal: in logs and pipes it would be noise.
   const bool progress = isatty(fileno(stderr));
@@ -80,15 +89,9 @@ int deform_command(const std::vector<std::string>& args) {
   json["peak_mib"] = peak_resident_mib();
   const std::string report = json_text(json);
   OutputFiles outputs;
-  if (arguments.has("output")) {
-    const std::string path = arguments.get("output", "");
-    outputs.stage(path, mesh_file_bytes(path, result.positions, mesh.faces));
-  }
-  if (arguments.has("output-labels")) {
-    const std::string path = arguments.get("output-labels", "");
-    outputs.stage(path, labels_file_text(path, result.labels));
-  }
-  if (arguments.has("report")) outputs.stage(arguments.get("report", ""), report + "\n");
+  if (app.count("--output")) outputs.stage(output, mesh_file_bytes(output, result.positions, mesh.faces));
+  if (app.count("--output-labels")) outputs.stage(output_labels, labels_file_text(output_labels, result.labels, labels_header(plain)));
+  if (app.count("--report")) outputs.stage(report_path, report + "\n");
   print_line(report);
   flush_stdout();
   outputs.commit();

@@ -15,35 +15,35 @@
 
 namespace polycube {
 
-const char* const kLabelUsage =
-    "polycube label IN.(off|obj|ply) --output LABELS.txt [--detail D] [--compactness W]\n"
-    "               [--straightened SHAPE.(obj|off|ply)]\n"
-    "  Labels every face automatically: straightens the shape so its normals gather on the axes,\n"
-    "  reads labels off it (graph cut over the six axes), repairs what breaks the polycube\n"
-    "  conditions and relabels faces flat charts would squeeze; writes one label per face and\n"
-    "  prints a summary.\n"
-    "  --detail       0..1 (default 0.5): 0 gives a few large charts, 1 many small ones\n"
-    "  --output       the labels file (0..5 = +X,-X,+Y,-Y,+Z,-Z), readable by --labels FILE\n"
-    "  --compactness  weight of chart boundaries against fidelity to the normals (default: set by\n"
-    "                 --detail, 0.3 at 0.5): larger gives fewer, rounder charts\n"
-    "  --straightened the straightened shape the labels were read from (same vertices and faces);\n"
-    "                 `polycube deform --start` can start from it\n";
-
 int label_command(const std::vector<std::string>& args) {
-  const Arguments arguments(args, {"output", "compactness", "detail", "straightened"});
-  if (!arguments.has("output")) throw Error("--output LABELS.txt is required");
-  const AutoLabelOptions options = auto_label_options(arguments);
-  const PolygonMesh mesh = read_mesh(arguments.input());
+  CLI::App app{"Labels every face automatically: straightens the shape so its normals gather on the axes,\n"
+               "reads labels off it (graph cut over the six axes), repairs what breaks the polycube\n"
+               "conditions and relabels faces flat charts would squeeze; writes one label per face and\n"
+               "prints a summary.",
+               "polycube label"};
+  std::string input, output, straightened_path;
+  LabelSource source;
+  app.add_option("IN", input, "the mesh (.off, .obj, .ply)")->required()->type_name("");
+  app.add_option("--output", output, "the labels file (0..5 = +X,-X,+Y,-Y,+Z,-Z), readable by --labels FILE")
+      ->required()
+      ->type_name("LABELS.txt");
+  add_auto_label_options(app, source);
+  bool plain = false;
+  add_plain_labels_option(app, plain);
+  app.add_option("--straightened", straightened_path,
+                 "the straightened shape the labels were read from (same vertices and faces);\n"
+                 "`polycube deform --start` can start from it")
+      ->type_name("SHAPE");
+  if (!parse_arguments(app, args)) return 0;
+  const AutoLabelOptions options = auto_label_options(source);
+  const PolygonMesh mesh = read_mesh(input);
   Vertices straightened;
   const std::vector<int> labels = auto_labels(mesh, options, &straightened);
   warn_about_orientation(mesh, labels, false);  // labels follow the winding: an inward mesh gets inward labels
-  const std::string output = arguments.get("output", "");
   OutputFiles outputs;
-  outputs.stage(output, labels_file_text(output, labels));
-  if (arguments.has("straightened")) {
-    const std::string path = arguments.get("straightened", "");
-    outputs.stage(path, mesh_file_bytes(path, straightened, mesh.faces));
-  }
+  outputs.stage(output, labels_file_text(output, labels, labels_header(plain)));
+  if (app.count("--straightened"))
+    outputs.stage(straightened_path, mesh_file_bytes(straightened_path, straightened, mesh.faces));
   const LabelValidation v = validate_labels(mesh, labels);
   const size_t invalid = static_cast<size_t>(std::count_if(
       v.violations.begin(), v.violations.end(), [](const LabelViolation& x) { return makes_invalid(x.kind); }));

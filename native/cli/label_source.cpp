@@ -10,23 +10,41 @@
 
 namespace polycube {
 
-AutoLabelOptions auto_label_options(const Arguments& arguments) {
-  AutoLabelOptions options = AutoLabelOptions::with_detail(arguments.get_double("detail", 0.5, 0.0));
-  options.compactness = arguments.get_double("compactness", options.compactness, 0.0);
+void add_auto_label_options(CLI::App& app, LabelSource& source) {
+  app.add_option("--detail", source.detail, "0..1 (default 0.5): 0 gives a few large charts, 1 many small ones")
+      ->type_name("D")
+      ->check(number_at_least(0.0));
+  app.add_option("--compactness", source.compactness,
+                 "weight of chart boundaries against fidelity to the normals (default: set by\n"
+                 "--detail, 0.3 at 0.5): larger gives fewer, rounder charts")
+      ->type_name("W")
+      ->check(number_at_least(0.0));
+}
+
+void add_plain_labels_option(CLI::App& app, bool& plain) {
+  app.add_flag("--plain", plain,
+               "labels files without their first line (a # comment stating the convention):\n"
+               "nothing but one integer per face, for tools that read plain integers");
+}
+
+LabelsHeader labels_header(bool plain) { return plain ? LabelsHeader::kPlain : LabelsHeader::kComment; }
+
+AutoLabelOptions auto_label_options(const LabelSource& source) {
+  AutoLabelOptions options = AutoLabelOptions::with_detail(source.detail);
+  if (source.compactness >= 0.0) options.compactness = source.compactness;
   return options;
 }
 
-std::vector<int> labels_from_source(const std::string& source, const PolygonMesh& mesh,
-                                    const AutoLabelOptions& options, bool flip) {
+std::vector<int> labels_from_source(const LabelSource& source, const PolygonMesh& mesh) {
   std::vector<int> labels;
-  if (source == "nearest") {
+  if (source.labels == "nearest") {
     labels = nearest_labels(mesh);
-  } else if (source == "auto") {
-    labels = auto_labels(mesh, options);
+  } else if (source.labels == "auto") {
+    labels = auto_labels(mesh, auto_label_options(source));
   } else {
-    labels = read_labels(source, mesh.faces.count());
+    labels = read_labels(source.labels, mesh.faces.count());
   }
-  return flip ? flip_labels(labels) : labels;
+  return source.flip ? flip_labels(labels) : labels;
 }
 
 bool warn_about_orientation(const PolygonMesh& mesh, const std::vector<int>& labels, bool flipped) {

@@ -13,23 +13,35 @@ namespace {
 
 struct Command {
   const char* name;
-  const char* const& usage;
+  const char* usage;
   int (*run)(const std::vector<std::string>&);
 };
 
 const Command kCommands[] = {
-    {"deform", polycube::kDeformUsage, polycube::deform_command},
-    {"label", polycube::kLabelUsage, polycube::label_command},
-    {"validate", polycube::kValidateUsage, polycube::validate_command},
-    {"refine", polycube::kRefineUsage, polycube::refine_command},
-    {"uv", polycube::kUvUsage, polycube::uv_command},
-    {"remesh", polycube::kRemeshUsage, polycube::remesh_command},
+    {"deform", "deform IN [--labels nearest|auto|FILE] [--output OUT] [--report REPORT.json] ...\n"
+               "      deforms the mesh into its polycube and prints the quality figures",
+     polycube::deform_command},
+    {"label", "label IN --output LABELS.txt [--detail D] [--plain] ...\n"
+              "      labels every face automatically",
+     polycube::label_command},
+    {"validate", "validate IN --labels FILE|auto|nearest [--json] ...\n"
+                 "      checks labels against the polycube conditions",
+     polycube::validate_command},
+    {"refine", "refine IN --levels K --output OUT [--scheme bilinear|loop|catmark] [--labels FILE]\n"
+               "      subdivides with OpenSubdiv so a coarse mesh can bend into a polycube",
+     polycube::refine_command},
+    {"uv", "uv IN POLYCUBE --output OUT.obj [--relax] [--merge SLACK] ...\n"
+           "      a UV map from the polycube, one island per chart",
+     polycube::uv_command},
+    {"remesh", "remesh IN POLYCUBE --edge-length H --output OUT\n"
+               "      an all-quad mesh from the exact polycube",
+     polycube::remesh_command},
 };
 
 void print_usage(std::FILE* out) {
-  std::fprintf(out, "usage:\n");
-  for (const Command& command : kCommands) std::fprintf(out, "%s\n", command.usage);
-  std::fprintf(out, "Run `polycube COMMAND --help` for one command.\n");
+  std::fprintf(out, "usage: polycube COMMAND ...\n");
+  for (const Command& command : kCommands) std::fprintf(out, "  polycube %s\n", command.usage);
+  std::fprintf(out, "Run `polycube COMMAND --help` for one command's options.\n");
 }
 
 // What a command printed must reach stdout, or the exit status says it did not.
@@ -58,10 +70,6 @@ int main(int argc, char** argv) {
   if (!command) {
     std::fprintf(stderr, "polycube: unknown command '%s' (run `polycube --help`)\n", name.c_str());
     return 2;
-  }
-  if (args.size() == 1 && (args[0] == "--help" || args[0] == "-h")) {
-    std::printf("usage: %s", command->usage);
-    return finish(("polycube " + name).c_str(), 0);
   }
   try {
     const int status = command->run(args);

@@ -11,23 +11,22 @@
 
 namespace polycube {
 
-const char* const kRemeshUsage =
-    "polycube remesh IN.(off|obj|ply) POLYCUBE.(off|obj|ply) --edge-length H --output OUT [--labels FILE]\n"
-    "  An all-quad mesh of IN from its exact polycube: the polycube's planes snapped in order to a\n"
-    "  grid of spacing H, its squares carried back onto IN. Irregular vertices only at polycube corners.\n"
-    "  POLYCUBE       the mesh's polycube as `polycube deform --output` writes it\n"
-    "  --edge-length  quad edge length, in IN's units (scaled by the polycube's own size)\n"
-    "  --labels       the labels the solver ended with (default: read from the polycube's normals)\n";
-
 int remesh_command(const std::vector<std::string>& args) {
-  const Arguments arguments(args, {"output", "labels", "edge-length"}, {}, 2);
-  if (!arguments.has("output")) throw Error("--output OUT is required");
-  if (!arguments.has("edge-length")) throw Error("--edge-length H is required");
-  const UseInput input = read_use_input(arguments);
+  CLI::App app{"An all-quad mesh of IN from its exact polycube: the polycube's planes snapped in order to a\n"
+               "grid of spacing H, its squares carried back onto IN. Irregular vertices only at polycube corners.",
+               "polycube remesh"};
+  UseInputPaths paths;
+  std::string output;
   QuadRemeshOptions options;
-  options.edge_length = arguments.get_double("edge-length", 0.0, 0.0);
+  add_use_inputs(app, paths);
+  app.add_option("--edge-length", options.edge_length, "quad edge length, in IN's units (scaled by the polycube's own size)")
+      ->required()
+      ->type_name("H")
+      ->check(number_at_least(0.0));
+  app.add_option("--output", output, "the quad mesh, .obj, .off or .ply")->required()->type_name("OUT");
+  if (!parse_arguments(app, args)) return 0;
+  const UseInput input = read_use_input(paths);
   const QuadRemesh remesh = quad_remesh(input.mesh, input.polycube, input.labels, options);
-  const std::string output = arguments.get("output", "");
   OutputFiles outputs;  // in place only once the figures reached stdout too
   outputs.stage(output, mesh_file_bytes(output, remesh.mesh.vertices, remesh.mesh.faces));
   const Json figures = {{"vertices", remesh.mesh.vertices.rows()},

@@ -3,6 +3,7 @@
 // the labels the solver ended with.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "cli/arguments.h"
@@ -16,8 +17,14 @@ struct UseInput {
   std::vector<int> labels;  // empty: read from the polycube's normals
 };
 
-// Inputs IN POLYCUBE and option --labels FILE. Throws Error when the polycube's
-// faces are not the mesh's.
-UseInput read_use_input(const Arguments& arguments);
+struct UseInputPaths {
+  std::string mesh, polycube, labels;  // labels empty: none given
+};
+
+// Declares the inputs IN POLYCUBE and --labels FILE.
+void add_use_inputs(CLI::App& app, UseInputPaths& paths);
+
+// Throws Error when the polycube's faces are not the mesh's.
+UseInput read_use_input(const UseInputPaths& paths);
 
 }  // namespace polycube

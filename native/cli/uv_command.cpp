@@ -12,30 +12,31 @@
 
 namespace polycube {
 
-const char* const kUvUsage =
-    "polycube uv IN.(off|obj|ply) POLYCUBE.(off|obj|ply) --output OUT.obj [--labels FILE] [--relax]\n"
-    "            [--merge SLACK] [--no-pack]\n"
-    "  A UV map from the polycube: one island per chart, the polycube's positions in the chart's\n"
-    "  plane, one texel density, packed into the unit square. OUT.obj is IN with `vt` per corner.\n"
-    "  POLYCUBE  the mesh's polycube as `polycube deform --output` writes it (same vertices, faces)\n"
-    "  --labels  the labels the solver ended with (default: read from the polycube's normals);\n"
-    "            a face turned away from its label is refused\n"
-    "  --relax   re-solve each island to keep the mesh's angles (least-squares conformal),\n"
-    "            keeping the polycube's islands and seams\n"
-    "  --merge   (implies --relax) merge neighbouring islands whose union unfolds as a disk,\n"
-    "            longest seam first, each merge raising angle distortion by at most SLACK (e.g. 0.01)\n"
-    "  --no-pack islands stay in their planes, overlapping\n";
-
 int uv_command(const std::vector<std::string>& args) {
-  const Arguments arguments(args, {"output", "labels", "merge"}, {"no-pack", "relax"}, 2);
-  if (!arguments.has("output")) throw Error("--output OUT.obj is required");
-  const UseInput input = read_use_input(arguments);
+  CLI::App app{"A UV map from the polycube: one island per chart, the polycube's positions in the chart's\n"
+               "plane, one texel density, packed into the unit square. OUT.obj is IN with `vt` per corner.",
+               "polycube uv"};
+  UseInputPaths paths;
+  std::string output;
+  bool relax = false, no_pack = false;
   PolycubeUvOptions options;
-  options.pack = !arguments.has("no-pack");
-  options.relax = arguments.has("relax") || arguments.has("merge");
-  options.merge_slack = arguments.get_double("merge", -1.0, 0.0);
+  options.merge_slack = -1.0;
+  add_use_inputs(app, paths);
+  app.add_option("--output", output, "the mesh with its UV map, .obj")->required()->type_name("OUT.obj");
+  app.add_flag("--relax", relax,
+               "re-solve each island to keep the mesh's angles (least-squares conformal),\n"
+               "keeping the polycube's islands and seams");
+  app.add_option("--merge", options.merge_slack,
+                 "(implies --relax) merge neighbouring islands whose union unfolds as a disk, longest seam\n"
+                 "first, each merge raising angle distortion by at most SLACK (e.g. 0.01)")
+      ->type_name("SLACK")
+      ->check(number_at_least(0.0));
+  app.add_flag("--no-pack", no_pack, "islands stay in their planes, overlapping");
+  if (!parse_arguments(app, args)) return 0;
+  const UseInput input = read_use_input(paths);
+  options.pack = !no_pack;
+  options.relax = relax || app.count("--merge");
   const PolycubeUv uv = polycube_uv(input.mesh, input.polycube, input.labels, options);
-  const std::string output = arguments.get("output", "");
   OutputFiles outputs;  // in place only once the figures reached stdout too
   outputs.stage(output, obj_with_uvs_bytes(output, input.mesh.vertices, input.mesh.faces, uv.uvs));
   const UvFigures figures = uv_figures(input.mesh, uv.uvs);

@@ -15,20 +15,6 @@
 
 namespace polycube {
 
-const char* const kValidateUsage =
-    "polycube validate IN.(off|obj|ply) --labels FILE|auto|nearest [--detail D] [--compactness W]\n"
-    "                [--flip-labels] [--json]\n"
-    "  Checks the labels against the polycube conditions (every chart touches at least four\n"
-    "  others, no opposite labels side by side, three charts at every corner), lists every\n"
-    "  violation with its faces and checks the orientation; also whether flat charts can realise\n"
-    "  the labels: reversed charts (invalid), turning points and squeezed faces (they collapse).\n"
-    "  Exit status 0 when valid, 4 when not.\n"
-    "  --labels       FILE: one label per face (0..5 = +X,-X,+Y,-Y,+Z,-Z, -1 = nearest);\n"
-    "                 auto: the automatic labeller; nearest: the axis nearest each normal\n"
-    "  --detail, --compactness  for --labels auto, as in `polycube label`\n"
-    "  --flip-labels  turn every label to its opposite (labels made for the other winding)\n"
-    "  --json         print the result as JSON (violations with all their faces)\n";
-
 namespace {
 
 void print_faces(const std::vector<int>& faces) {
@@ -41,22 +27,38 @@ void print_faces(const std::vector<int>& faces) {
 }  // namespace
 
 int validate_command(const std::vector<std::string>& args) {
-  const Arguments arguments(args, {"labels", "compactness", "detail"}, {"flip-labels", "json"});
-  if (!arguments.has("labels")) throw Error("--labels FILE|auto|nearest is required");
-  const bool flip = arguments.has("flip-labels");
+  CLI::App app{"Checks the labels against the polycube conditions (every chart touches at least four\n"
+               "others, no opposite labels side by side, three charts at every corner), lists every\n"
+               "violation with its faces and checks the orientation; also whether flat charts can realise\n"
+               "the labels: reversed charts (invalid), turning points and squeezed faces (they collapse).\n"
+               "Exit status 0 when valid, 4 when not.",
+               "polycube validate"};
+  std::string input;
+  LabelSource source;
+  bool json_output = false;
+  app.add_option("IN", input, "the mesh (.off, .obj, .ply)")->required()->type_name("");
+  app.add_option("--labels", source.labels,
+                 "FILE: one label per face (0..5 = +X,-X,+Y,-Y,+Z,-Z, -1 = nearest);\n"
+                 "auto: the automatic labeller; nearest: the axis nearest each normal")
+      ->required()
+      ->type_name("FILE|auto|nearest");
+  add_auto_label_options(app, source);
+  app.add_flag("--flip-labels", source.flip, "turn every label to its opposite (labels made for the other winding)");
+  app.add_flag("--json", json_output, "print the result as JSON (violations with all their faces)");
+  if (!parse_arguments(app, args)) return 0;
 
-  const PolygonMesh mesh = read_mesh(arguments.input());
-  const std::vector<int> labels = labels_from_source(arguments.get("labels", ""), mesh, auto_label_options(arguments), flip);
+  const PolygonMesh mesh = read_mesh(input);
+  const std::vector<int> labels = labels_from_source(source, mesh);
   const LabelValidation validation = validate_labels(mesh, labels);
   const Orientation orient = orientation(mesh, &labels);
 
-  if (arguments.has("json")) {
+  if (json_output) {
     Json json = {{"faces", mesh.faces.count()}};
     add_validation(json, validation);
     add_orientation(json["orientation"] = Json::object(), orient, true);
     print_line(json_text(json));
   } else {
-    warn_about_orientation(mesh, labels, flip);
+    warn_about_orientation(mesh, labels, source.flip);
     std::printf("%d faces, %d charts, %d chart boundaries, %d corners", mesh.faces.count(), validation.charts,
                 validation.boundaries, validation.corners);
     if (validation.unlabelled_faces > 0) std::printf(", %d unlabelled faces (judged by nearest axis)",

@@ -65,8 +65,10 @@ std::vector<int> parse_labels(const std::string& path, const std::string& data, 
   return labels;
 }
 
-std::string labels_file_text(const std::string& path, const std::vector<int>& labels) {
-  std::string out = std::string("# polycube face labels, one per face in face order: ") + kConvention + "\n";
+std::string labels_file_text(const std::string& path, const std::vector<int>& labels, LabelsHeader header) {
+  std::string out;
+  if (header == LabelsHeader::kComment)
+    out = std::string("# polycube face labels, one per face in face order: ") + kConvention + "\n";
   out.reserve(out.size() + labels.size() * 3);
   for (size_t f = 0; f < labels.size(); ++f) {
     if (labels[f] < -1 || labels[f] > 5)
@@ -78,8 +80,8 @@ std::string labels_file_text(const std::string& path, const std::vector<int>& la
   return out;
 }
 
-void write_labels(const std::string& path, const std::vector<int>& labels) {
-  write_file_atomically(path, labels_file_text(path, labels));
+void write_labels(const std::string& path, const std::vector<int>& labels, LabelsHeader header) {
+  write_file_atomically(path, labels_file_text(path, labels, header));
 }
 
 }  // namespace polycube

@@ -17,12 +17,19 @@ std::vector<int> read_labels(const std::string& path, int face_count);
 // The same over bytes in memory (the fuzz target); path names them in messages.
 std::vector<int> parse_labels(const std::string& path, const std::string& data, int face_count);
 
-// One label per line after a comment stating the convention; atomic like
-// write_mesh. Throws Error if a value is outside -1..5 or the file cannot be
-// written.
-void write_labels(const std::string& path, const std::vector<int>& labels);
+// How a labels file starts: with a comment line stating the convention (read
+// back by read_labels, which skips comments), or plain, nothing but the
+// integers, for tools that take every token for a label (docs/design.md
+// section 3.1).
+enum class LabelsHeader { kComment, kPlain };
+
+// One label per line; atomic like write_mesh. Throws Error if a value is
+// outside -1..5 or the file cannot be written.
+void write_labels(const std::string& path, const std::vector<int>& labels,
+                  LabelsHeader header = LabelsHeader::kComment);
 
 // The text write_labels would write (for OutputFiles::stage); the same errors.
-std::string labels_file_text(const std::string& path, const std::vector<int>& labels);
+std::string labels_file_text(const std::string& path, const std::vector<int>& labels,
+                             LabelsHeader header = LabelsHeader::kComment);
 
 }  // namespace polycube

@@ -676,6 +676,10 @@ TEST(IoLabels, RoundTrip) {
   EXPECT_FALSE(std::filesystem::exists(path + ".tmp"));
   EXPECT_EQ(load(path).rfind("# ", 0), 0u);
   EXPECT_EQ(polycube::read_labels(path, 8), labels);
+  // Plain: nothing but the integers, read back the same.
+  polycube::write_labels(path, labels, polycube::LabelsHeader::kPlain);
+  EXPECT_EQ(load(path), "0\n1\n2\n3\n4\n5\n-1\n0\n");
+  EXPECT_EQ(polycube::read_labels(path, 8), labels);
 }
 
 TEST(IoLabels, CommentsAndWhitespace) {

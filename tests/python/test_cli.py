@@ -81,6 +81,9 @@ def test_b0_with_its_labeling(program):
     (lambda d, m: ["deform", m, "--variant", "fast"], "unknown variant"),
     (lambda d, m: ["deform", m, "--colour", "red"], "unknown option --colour"),
     (lambda d, m: ["deform", m, m], "more than one input"),
+    (lambda d, m: ["deform", m, "--iterations", "2", "--iterations", "3"], "--iterations is given more than once"),
+    (lambda d, m: ["deform", m, "--tolerance", "nan"], "--tolerance: must be a number of at least 0, got 'nan'"),
+    (lambda d, m: ["uv", m], "expected 2 inputs, got 1"),
     (lambda d, m: ["deform", m, "--labels", d / "nolabels.txt"], "nolabels.txt"),
     (lambda d, m: ["deform", d / "mesh.stl"], "mesh.stl"),
     (lambda d, m: ["deform", d / "bad.off"], "bad.off"),
@@ -184,6 +187,10 @@ def test_outputs_replace_old_files_only_on_success(program, sphere_off, tmp_path
 def test_help(program):
     result = run(program, "deform", "--help")
     assert result.returncode == 0 and "--variant" in result.stdout
+    for command in ("deform", "label", "validate", "refine", "uv", "remesh"):
+        result = run(program, command, "-h")
+        assert result.returncode == 0 and result.stdout.startswith(("Deforms", "Labels", "Checks", "Subdivides", "A", "An"))
+        assert f"Usage: polycube {command} [OPTIONS] IN" in result.stdout
     assert run(program).returncode == 2
 
 

@@ -167,6 +167,18 @@ def test_cli_label_validate_and_deform_auto(program, tmp_path):
     assert a.returncode == 0 and b.returncode == 0, a.stderr + b.stderr
     assert json.loads(a.stdout)["normal_deviation_max_deg"] == json.loads(b.stdout)["normal_deviation_max_deg"]
     assert len(labels) == report["faces"]
+    # --plain: the same labels with no comment line, for tools that read every token as
+    # a label; both files read back the same.
+    plain_path = tmp_path / "plain.txt"
+    assert run(program, "label", fandisk, "--output", plain_path, "--plain").returncode == 0
+    plain_text = plain_path.read_text()
+    assert labels_path.read_text().startswith("#") and "#" not in plain_text
+    assert [int(t) for t in plain_text.split()] == labels.tolist()
+    c = run(program, "deform", fandisk, "--labels", plain_path, "--iterations", 3,
+            "--output-labels", tmp_path / "out.txt", "--plain")
+    assert json.loads(c.stdout) == json.loads(b.stdout) | {"seconds": json.loads(c.stdout)["seconds"],
+                                                           "peak_mib": json.loads(c.stdout)["peak_mib"]}
+    assert not (tmp_path / "out.txt").read_text().startswith("#")
 
 
 def test_cli_validate_fails_on_invalid_and_flip_labels(program, tmp_path):
