@@ -89,7 +89,7 @@ int deform_command(const std::vector<std::string>& args) {
   json["peak_mib"] = peak_resident_mib();
   const std::string report = json_text(json);
   OutputFiles outputs;
-  if (app.count("--output")) outputs.stage(output, mesh_file_bytes(output, result.positions, mesh.faces));
+  if (app.count("--output")) outputs.stage(output, mesh_file_writer(output, result.positions, mesh.faces));
   if (app.count("--output-labels")) outputs.stage(output_labels, labels_file_text(output_labels, result.labels, labels_header(plain)));
   if (app.count("--report")) outputs.stage(report_path, report + "\n");
   print_line(report);

@@ -43,7 +43,7 @@ int label_command(const std::vector<std::string>& args) {
   OutputFiles outputs;
   outputs.stage(output, labels_file_text(output, labels, labels_header(plain)));
   if (app.count("--straightened"))
-    outputs.stage(straightened_path, mesh_file_bytes(straightened_path, straightened, mesh.faces));
+    outputs.stage(straightened_path, mesh_file_writer(straightened_path, straightened, mesh.faces));
   const LabelValidation v = validate_labels(mesh, labels);
   const size_t invalid = static_cast<size_t>(std::count_if(
       v.violations.begin(), v.violations.end(), [](const LabelViolation& x) { return makes_invalid(x.kind); }));

@@ -39,7 +39,7 @@ int refine_command(const std::vector<std::string>& args) {
       app.count("--labels") ? read_labels(labels_path, mesh.faces.count()) : std::vector<int>{};
   const Refined refined = refine(mesh, labels, levels, refine_scheme);
   OutputFiles outputs;
-  outputs.stage(output, mesh_file_bytes(output, refined.mesh.vertices, refined.mesh.faces));
+  outputs.stage(output, mesh_file_writer(output, refined.mesh.vertices, refined.mesh.faces));
   if (!labels.empty()) outputs.stage(output + ".labels", labels_file_text(output + ".labels", refined.labels, labels_header(plain)));
   const Json figures = {{"vertices", refined.mesh.vertices.rows()}, {"faces", refined.mesh.faces.count()}};
   print_line(json_text(figures, -1));

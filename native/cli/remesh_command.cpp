@@ -28,7 +28,7 @@ int remesh_command(const std::vector<std::string>& args) {
   const UseInput input = read_use_input(paths);
   const QuadRemesh remesh = quad_remesh(input.mesh, input.polycube, input.labels, options);
   OutputFiles outputs;  // in place only once the figures reached stdout too
-  outputs.stage(output, mesh_file_bytes(output, remesh.mesh.vertices, remesh.mesh.faces));
+  outputs.stage(output, mesh_file_writer(output, remesh.mesh.vertices, remesh.mesh.faces));
   const Json figures = {{"vertices", remesh.mesh.vertices.rows()},
                         {"quads", remesh.mesh.faces.count()},
                         {"irregular_vertices", remesh.irregular_vertices},

@@ -38,7 +38,7 @@ int uv_command(const std::vector<std::string>& args) {
   options.relax = relax || app.count("--merge");
   const PolycubeUv uv = polycube_uv(input.mesh, input.polycube, input.labels, options);
   OutputFiles outputs;  // in place only once the figures reached stdout too
-  outputs.stage(output, obj_with_uvs_bytes(output, input.mesh.vertices, input.mesh.faces, uv.uvs));
+  outputs.stage(output, obj_with_uvs_writer(output, input.mesh.vertices, input.mesh.faces, uv.uvs));
   const UvFigures figures = uv_figures(input.mesh, uv.uvs);
   const Json report = {{"islands", uv.islands},
                        {"angle_distortion", figures.angle_distortion},

@@ -130,7 +130,7 @@ DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>&
   const Eigen::MatrixX3d centroids = component_centroids(mesh.vertices, parts);
   QualityMeasure quality(mesh.vertices, triangles, triangle_labels);
   Vertices x = mesh.vertices;
-  result.figures = quality.measure(x);
+  result.figures = quality.measure(x, false);  // the report's error means are the last measurement's
   result.converged = converged(result.figures, options.tolerance_deg, triangles.rows());
   result.input_folded_edges = quality.input_folded_edges();
   result.seconds.measure += phase.lap();
@@ -155,7 +155,7 @@ DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>&
   };
   if (options.start.size() > 0) {
     x = options.start;
-    result.figures = quality.measure(x);
+    result.figures = quality.measure(x, false);
     result.converged = converged(result.figures, options.tolerance_deg, triangles.rows());
   }
 
@@ -479,9 +479,9 @@ DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>&
   for (int f = 0; f < mesh.faces.count(); ++f)
     if (result.labels[f] != filled_labels[f]) result.relabelled_faces.push_back(f);
 
-  // The faces that did not make it, by polygon id.
+  // The faces that did not make it, by polygon id; the same states give the figures.
+  const FaceStates state = quality.face_states(x);
   {
-    const FaceStates state = quality.face_states(x);
     std::vector<char> unconverged(mesh.faces.count(), 0), flipped(mesh.faces.count(), 0);
     for (size_t t = 0; t < state.flipped.size(); ++t) {
       const int f = triangulation.face_of_triangle[t];
@@ -494,7 +494,7 @@ DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>&
     }
     result.seconds.measure += phase.lap();
   }
-  result.figures = quality.measure(x);
+  result.figures = quality.measure(x, state);
   result.converged = converged(result.figures, options.tolerance_deg, triangles.rows());
   if (!result.relabelled_faces.empty()) {
     // Against the labels the caller gave (unlabelled faces: nearest axis).

@@ -120,7 +120,10 @@ void QualityMeasure::update_face_state(const Vertices& output, Eigen::Index f, F
 }
 
 Figures QualityMeasure::measure(const Vertices& output, bool errors) const {
-  const FaceStates s = face_states(output);
+  return measure(output, face_states(output), errors);
+}
+
+Figures QualityMeasure::measure(const Vertices& output, const FaceStates& s, bool errors) const {
   Figures figures;
   figures.normal_deviation_max_deg = s.max_deviation_deg;
   figures.flipped_faces = s.flipped_count;

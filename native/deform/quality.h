@@ -68,6 +68,8 @@ class QualityMeasure {
   // stopping rule needs only the normal figures, and the edge pass is the
   // costliest part.
   Figures measure(const Vertices& output, bool errors = true) const;
+  // The same from the face states of output, when the caller has them.
+  Figures measure(const Vertices& output, const FaceStates& states, bool errors = true) const;
 
   // The share of the input's area in the collapsed triangles of `states`.
   double collapsed_area_fraction(const FaceStates& states) const;

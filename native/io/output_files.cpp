@@ -12,6 +12,7 @@
 #include <cstring>
 #include <filesystem>
 
+#include "io/byte_sink.h"
 #include "io/read_mesh.h"
 #include "mesh/mesh.h"
 
@@ -52,6 +53,10 @@ OutputFiles::~OutputFiles() {
 }
 
 void OutputFiles::stage(const std::string& path, std::string_view bytes) {
+  stage(path, [bytes](ByteSink& out) { out += bytes; });
+}
+
+void OutputFiles::stage(const std::string& path, const FileWriter& write) {
   check_path(path);
   std::error_code ec;
   if (path.empty()) throw Error("cannot write a file with an empty name");
@@ -69,8 +74,21 @@ void OutputFiles::stage(const std::string& path, std::string_view bytes) {
     if (fd < 0 && (errno != EEXIST || attempt > 100)) fail_to_create(path, errno);
   }
   staged_.push_back({path, temporary, fs::exists(target, ec)});
-  bool ok = write_all(fd, bytes);
-  int err = errno;
+  bool ok = true;
+  int err = 0;
+  try {
+    ByteSink sink([&](std::string_view chunk) {
+      if (ok && !write_all(fd, chunk)) {
+        ok = false;
+        err = errno;
+      }
+    });
+    write(sink);
+    sink.flush();
+  } catch (...) {
+    ::close(fd);
+    throw;
+  }
   // close reports what a network filesystem could not store.
   if (::close(fd) != 0 && ok) {
     ok = false;

@@ -12,11 +12,16 @@
 //   outputs.commit();
 #pragma once
 
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 namespace polycube {
+
+class ByteSink;
+// Writes a file's bytes into a ByteSink.
+using FileWriter = std::function<void(ByteSink&)>;
 
 class OutputFiles {
  public:
@@ -31,6 +36,9 @@ class OutputFiles {
   // permission, disk full, NUL in the path); the temporaries staged so far
   // stay staged, and go when this object does.
   void stage(const std::string& path, std::string_view bytes);
+  // The same, the bytes produced by write in chunks (byte_sink.h), so they
+  // are never all in memory; write may throw Error too.
+  void stage(const std::string& path, const FileWriter& write);
 
   // Renames every staged file onto its target, in staging order. If one
   // rename fails, removes the temporaries left and the targets this call

@@ -1,5 +1,5 @@
-// Mesh writers. Each format is built in memory and handed to
-// write_file_atomically (output_files.h) in one piece: simple, fast (one system call), and a
+// Mesh writers. Each format goes through a ByteSink, in chunks, to a
+// temporary file that OutputFiles renames into place only once complete: a
 // failure midway (disk full) cannot leave a truncated mesh where a good one
 // was. The mesh is checked first, so we never write a file read_mesh would
 // reject.
@@ -13,6 +13,7 @@
 #include <cstring>
 #include <filesystem>
 
+#include "io/byte_sink.h"
 #include "io/output_files.h"
 
 namespace polycube {
@@ -39,32 +40,17 @@ void check_mesh(const std::string& path, const Vertices& v, const PolygonFaces& 
     if (!v.row(i).allFinite()) fail(path, "vertex " + std::to_string(i) + " has a non-finite coordinate");
 }
 
-// Shortest text that reads back to the same double (std::to_chars).
-void put(std::string& out, double x) {
-  char buf[32];
-  out.append(buf, std::to_chars(buf, buf + sizeof buf, x).ptr);
-}
-
-void put(std::string& out, long long x) {
-  char buf[24];
-  out.append(buf, std::to_chars(buf, buf + sizeof buf, x).ptr);
-}
-
 // "x y z\n"
-void put_vertex(std::string& out, const Vertices& v, Eigen::Index i) {
-  put(out, v(i, 0));
-  out += ' ';
-  put(out, v(i, 1));
-  out += ' ';
-  put(out, v(i, 2));
-  out += '\n';
+void put_vertex(ByteSink& out, const Vertices& v, Eigen::Index i) {
+  out.put(v(i, 0)) += ' ';
+  out.put(v(i, 1)) += ' ';
+  out.put(v(i, 2)) += '\n';
 }
 
 // uvs: null, or one (u, v) per corner, written as `vt` lines and `f v/vt` corners.
-std::string obj_text(const Vertices& v, const PolygonFaces& f, const CornerUvs* uvs = nullptr) {
-  std::string out =
-      "# polycube: " + std::to_string(v.rows()) + " vertices, " + std::to_string(f.count()) + " faces\n";
+void write_obj(ByteSink& out, const Vertices& v, const PolygonFaces& f, const CornerUvs* uvs = nullptr) {
   out.reserve(v.rows() * 64 + f.indices.size() * (uvs ? 60 : 9) + f.count() * 3);
+  out += "# polycube: " + std::to_string(v.rows()) + " vertices, " + std::to_string(f.count()) + " faces\n";
   for (Eigen::Index i = 0; i < v.rows(); ++i) {
     out += "v ";
     put_vertex(out, v, i);
@@ -72,57 +58,53 @@ std::string obj_text(const Vertices& v, const PolygonFaces& f, const CornerUvs* 
   if (uvs)
     for (Eigen::Index c = 0; c < uvs->rows(); ++c) {
       out += "vt ";
-      put(out, (*uvs)(c, 0));
-      out += ' ';
-      put(out, (*uvs)(c, 1));
-      out += '\n';
+      out.put((*uvs)(c, 0)) += ' ';
+      out.put((*uvs)(c, 1)) += '\n';
     }
   for (int i = 0; i < f.count(); ++i) {
     out += 'f';
     for (int k = f.offsets[i]; k < f.offsets[i + 1]; ++k) {
       out += ' ';
-      put(out, f.indices[k] + 1LL);  // OBJ counts from 1
+      out.put(f.indices[k] + 1LL);  // OBJ counts from 1
       if (uvs) {
         out += '/';
-        put(out, k + 1LL);
+        out.put(k + 1LL);
       }
     }
     out += '\n';
   }
-  return out;
 }
 
-std::string off_text(const Vertices& v, const PolygonFaces& f) {
-  std::string out = "OFF\n" + std::to_string(v.rows()) + " " + std::to_string(f.count()) + " 0\n";
+void write_off(ByteSink& out, const Vertices& v, const PolygonFaces& f) {
   out.reserve(v.rows() * 64 + f.indices.size() * 9 + f.count() * 4);
+  out += "OFF\n" + std::to_string(v.rows()) + " " + std::to_string(f.count()) + " 0\n";
   for (Eigen::Index i = 0; i < v.rows(); ++i) put_vertex(out, v, i);
   for (int i = 0; i < f.count(); ++i) {
-    put(out, static_cast<long long>(f.size(i)));
+    out.put(f.size(i));
     for (int k = f.offsets[i]; k < f.offsets[i + 1]; ++k) {
       out += ' ';
-      put(out, static_cast<long long>(f.indices[k]));
+      out.put(f.indices[k]);
     }
     out += '\n';
   }
-  return out;
 }
 
 // Appends the little-endian bytes of x.
 template <class T>
-void put_le(std::string& out, T x) {
+void put_le(ByteSink& out, T x) {
   char b[sizeof(T)];
   std::memcpy(b, &x, sizeof(T));
   const uint16_t one = 1;
   if (*reinterpret_cast<const unsigned char*>(&one) == 0) std::reverse(b, b + sizeof(T));
-  out.append(b, sizeof(T));
+  out += std::string_view(b, sizeof(T));
 }
 
-std::string ply_bytes(const Vertices& v, const PolygonFaces& f) {
+void write_ply(ByteSink& out, const Vertices& v, const PolygonFaces& f) {
   // Faces with more than 255 corners need a wider length than the usual uchar.
   int largest = 0;
   for (int i = 0; i < f.count(); ++i) largest = std::max(largest, f.size(i));
   bool wide = largest > 255;
-  std::string out =
+  const std::string header =
       "ply\nformat binary_little_endian 1.0\ncomment written by polycube\n"
       "element vertex " +
       std::to_string(v.rows()) +
@@ -131,7 +113,8 @@ std::string ply_bytes(const Vertices& v, const PolygonFaces& f) {
       std::to_string(f.count()) +
       (wide ? "\nproperty list int int vertex_indices\n" : "\nproperty list uchar int vertex_indices\n") +
       "end_header\n";
-  out.reserve(out.size() + v.rows() * 24 + f.indices.size() * 4 + f.count() * (wide ? 4 : 1));
+  out.reserve(header.size() + v.rows() * 24 + f.indices.size() * 4 + f.count() * (wide ? 4 : 1));
+  out += header;
   for (Eigen::Index i = 0; i < v.rows(); ++i)
     for (int c = 0; c < 3; ++c) put_le(out, v(i, c));
   for (int i = 0; i < f.count(); ++i) {
@@ -141,36 +124,47 @@ std::string ply_bytes(const Vertices& v, const PolygonFaces& f) {
       put_le<uint8_t>(out, static_cast<uint8_t>(f.size(i)));
     for (int k = f.offsets[i]; k < f.offsets[i + 1]; ++k) put_le<int32_t>(out, f.indices[k]);
   }
-  return out;
 }
 
 }  // namespace
 
-std::string mesh_file_bytes(const std::string& path, const Vertices& v, const PolygonFaces& f) {
+FileWriter mesh_file_writer(const std::string& path, const Vertices& v, const PolygonFaces& f) {
   std::string ext = std::filesystem::path(path).extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   if (ext != ".obj" && ext != ".off" && ext != ".ply")
     fail(path, ext.empty() ? "no file extension, expected .obj, .off or .ply"
                            : "unknown mesh format '" + ext + "', expected .obj, .off or .ply");
   check_mesh(path, v, f);
-  return ext == ".obj" ? obj_text(v, f) : ext == ".off" ? off_text(v, f) : ply_bytes(v, f);
+  if (ext == ".obj") return [&v, &f](ByteSink& out) { write_obj(out, v, f); };
+  if (ext == ".off") return [&v, &f](ByteSink& out) { write_off(out, v, f); };
+  return [&v, &f](ByteSink& out) { write_ply(out, v, f); };
+}
+
+std::string mesh_file_bytes(const std::string& path, const Vertices& v, const PolygonFaces& f) {
+  ByteSink bytes;
+  mesh_file_writer(path, v, f)(bytes);
+  return bytes.take();
 }
 
 void write_mesh(const std::string& path, const Vertices& v, const PolygonFaces& f) {
-  write_file_atomically(path, mesh_file_bytes(path, v, f));
+  OutputFiles outputs;
+  outputs.stage(path, mesh_file_writer(path, v, f));
+  outputs.commit();
 }
 
-std::string obj_with_uvs_bytes(const std::string& path, const Vertices& v, const PolygonFaces& f,
+FileWriter obj_with_uvs_writer(const std::string& path, const Vertices& v, const PolygonFaces& f,
                                const CornerUvs& uvs) {
   check_mesh(path, v, f);
   if (uvs.rows() != static_cast<Eigen::Index>(f.indices.size()))
     fail(path, std::to_string(uvs.rows()) + " UVs for " + std::to_string(f.indices.size()) + " face corners");
   if (!uvs.allFinite()) fail(path, "a UV coordinate is not finite");
-  return obj_text(v, f, &uvs);
+  return [&v, &f, &uvs](ByteSink& out) { write_obj(out, v, f, &uvs); };
 }
 
 void write_obj_with_uvs(const std::string& path, const Vertices& v, const PolygonFaces& f, const CornerUvs& uvs) {
-  write_file_atomically(path, obj_with_uvs_bytes(path, v, f, uvs));
+  OutputFiles outputs;
+  outputs.stage(path, obj_with_uvs_writer(path, v, f, uvs));
+  outputs.commit();
 }
 
 }  // namespace polycube

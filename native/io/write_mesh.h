@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "io/output_files.h"
 #include "mesh/mesh.h"
 
 namespace polycube {
@@ -21,12 +22,16 @@ void write_mesh(const std::string& path, const Vertices& v, const PolygonFaces& 
 // An .obj with one `vt` per face corner (uvs: #corners by 2, faces.indices
 // order) and `f v/vt` corners, so UV seams survive. Same checks as write_mesh.
 void write_obj_with_uvs(const std::string& path, const Vertices& v, const PolygonFaces& f, const CornerUvs& uvs);
-// Its bytes, for OutputFiles::stage.
-std::string obj_with_uvs_bytes(const std::string& path, const Vertices& v, const PolygonFaces& f,
+// Its writer, for OutputFiles::stage, as mesh_file_writer.
+FileWriter obj_with_uvs_writer(const std::string& path, const Vertices& v, const PolygonFaces& f,
                                const CornerUvs& uvs);
 
-// The bytes write_mesh would write, for OutputFiles::stage when a command
-// writes several files all or none. Throws the same errors, the write aside.
+// What write_mesh writes, for OutputFiles::stage when a command writes
+// several files all or none: checks path and mesh now (the same errors, the
+// write aside), writes when called, in chunks. v and f must outlive it.
+FileWriter mesh_file_writer(const std::string& path, const Vertices& v, const PolygonFaces& f);
+
+// The same bytes, whole, in memory.
 std::string mesh_file_bytes(const std::string& path, const Vertices& v, const PolygonFaces& f);
 
 }  // namespace polycube

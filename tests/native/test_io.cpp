@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "io/byte_sink.h"
 #include "io/json.h"
 #include "io/labels_io.h"
 #include "io/output_files.h"
@@ -152,6 +153,23 @@ INSTANTIATE_TEST_SUITE_P(Formats, IoRoundTrip,
                            std::string s = p.param.substr(1);
                            return s + (std::islower(static_cast<unsigned char>(p.param[1])) ? "" : "_upper");
                          });
+
+// Files written in chunks (byte_sink.h) are the bytes built whole in memory.
+TEST(IoWriteMesh, ChunkedFilesEqualTheWholeText) {
+  Vertices v(20000, 3);
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> coordinate(-1.0, 1.0);
+  for (Eigen::Index i = 0; i < v.size(); ++i) v.data()[i] = coordinate(random);
+  PolygonFaces f;
+  for (int i = 0; i + 2 < v.rows(); ++i) f.add({i, i + 1, i + 2});
+  for (const std::string extension : {".obj", ".off", ".ply"}) {
+    const std::string path = temp_path("chunked" + extension);
+    polycube::write_mesh(path, v, f);
+    const std::string whole = polycube::mesh_file_bytes(path, v, f);
+    EXPECT_GT(whole.size(), 4 * polycube::ByteSink::kChunk);
+    EXPECT_TRUE(load(path) == whole) << extension;
+  }
+}
 
 TEST(IoWriteMesh, PlyIsBinaryLittleEndianWithDoubles) {
   PolygonMesh m = awkward_mesh();
