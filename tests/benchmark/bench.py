@@ -17,13 +17,22 @@ Ratios:
   it runs at most --scipy-iterations and is extrapolated from its setup and
   per-iteration times, said so in the table).
 
-Writes build/bench/results.md and results.json.
+Then the whole process as a user runs it (whole_process_rows): `polycube
+deform MESH --labels L --output OUT.obj --report OUT.json` with the default
+settings, wall time and peak RSS of the process (median of --whole-runs runs;
+one run for the refined models), with the load average, since the machine
+may be shared.
+
+Writes build/bench/results.md, results.json and whole_process.json.
 """
 import argparse
 import json
+import os
 import pathlib
+import statistics
 import subprocess
 import sys
+import tempfile
 import time
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
@@ -81,6 +90,49 @@ def scipy_seconds(mesh, labels, variant, iterations, limit):
     return seconds["setup"] + first + sum(rest) / len(rest) * (iterations - 1), run
 
 
+def whole_process_rows(program, cases, runs):
+    """Wall time and peak RSS of `polycube deform` as a user runs it: reading the
+    mesh and labels, solving, measuring, writing the mesh and the report.
+    cases: (name, mesh, labels, runs or None for `runs`)."""
+    rows = []
+    with tempfile.TemporaryDirectory() as folder:
+        output, report = os.path.join(folder, "out.obj"), os.path.join(folder, "report.json")
+        for name, mesh, labels, case_runs in cases:
+            seconds, mib = [], []
+            for _ in range(case_runs or runs):
+                start = time.perf_counter()
+                child = subprocess.Popen([program, "deform", mesh, "--labels", labels, "--output", output,
+                                          "--report", report], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+                _, status, usage = os.wait4(child.pid, 0)
+                seconds.append(time.perf_counter() - start)
+                child.returncode = os.waitstatus_to_exitcode(status)
+                error = child.stderr.read().decode(errors="replace").strip()
+                child.stderr.close()
+                if child.returncode != 0:
+                    raise RuntimeError(f"{mesh}: polycube deform failed (exit {child.returncode}): {error}")
+                mib.append(usage.ru_maxrss / 1024.0)  # KiB on Linux
+            result = json.loads(pathlib.Path(report).read_text())
+            rows.append({"model": name, "triangles": result["triangles"], "runs": len(seconds),
+                         "wall_seconds_median": statistics.median(seconds),
+                         "peak_rss_mib_median": statistics.median(mib),
+                         "solver_seconds": result["seconds"]["total"],
+                         "flipped_faces": result["flipped_faces"], "converged": result["converged"],
+                         "load_average_1min": os.getloadavg()[0]})
+            print(f"{name} whole process: {rows[-1]['wall_seconds_median']:.3f} s, "
+                  f"{rows[-1]['peak_rss_mib_median']:.1f} MiB", file=sys.stderr)
+    return rows
+
+
+def whole_process_table(rows):
+    columns = ["model", "triangles", "runs", "wall_seconds_median", "peak_rss_mib_median", "solver_seconds",
+               "flipped_faces", "converged", "load_average_1min"]
+    lines = ["Whole process (`polycube deform MESH --labels L --output OUT.obj --report OUT.json`, "
+             "median of the runs):", "", "| " + " | ".join(columns) + " |", "|" + "---|" * len(columns)]
+    lines += ["| " + " | ".join(f"{row[k]:.3f}" if isinstance(row[k], float) else str(row[k]) for k in columns) + " |"
+              for row in rows]
+    return "\n".join(lines)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--build", default=str(ROOT / "build"))
@@ -93,6 +145,9 @@ def main():
                         help="iterations of `fixed` compared with SciPy (extrapolated on the SciPy side)")
     parser.add_argument("--models", default=",".join(m[0] for m in MODELS))
     parser.add_argument("--no-refined", action="store_true", help="skip the ~1M-triangle refined models")
+    parser.add_argument("--whole-runs", type=int, default=5,
+                        help="runs of the whole process per model (the refined models run once)")
+    parser.add_argument("--whole-only", action="store_true", help="only the whole-process rows")
     args = parser.parse_args()
 
     build = pathlib.Path(args.build).resolve()
@@ -122,6 +177,14 @@ def main():
             subprocess.run(command, check=True, capture_output=True)
         refined_labels = labels if labels == "nearest" else str(refined) + ".labels"
         cases.append((f"{name} x{4 ** levels}", str(refined), refined_labels))
+
+    whole = whole_process_rows(program, [(name, mesh, labels, 1 if " x" in name else None)
+                                         for name, mesh, labels in cases], args.whole_runs)
+    (out_dir / "whole_process.json").write_text(json.dumps(whole, indent=2) + "\n")
+    if args.whole_only:
+        (out_dir / "results.md").write_text(whole_process_table(whole) + "\n")
+        print(whole_process_table(whole))
+        return
 
     rows = []
     for name, mesh, labels in cases:
@@ -187,7 +250,7 @@ def main():
     lines.append(f"ratio_scipy: our `fixed` / SciPy `fixed`, {args.scipy_compare_iterations} iterations each (SciPy "
                  f"timed for {args.scipy_iterations}, extrapolated). ratio_floor: our total / (one factorisation + "
                  "our back-substitutions). ratio_paper: our total / the paper-literal `current` total.")
-    table = "\n".join(lines)
+    table = "\n".join(lines) + "\n\n" + whole_process_table(whole)
     (out_dir / "results.md").write_text(table + "\n")
     print(table)
 
