@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 
 #include "labels/axis.h"
 #include "mesh/check_input.h"
@@ -204,8 +205,9 @@ DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>&
       result.seconds.assemble += phase.lap();
       if (!result.converged) factorization.factorize(laplacian.matrix());
       result.seconds.factorize += phase.lap();
-      // The Laplacian of the current mesh, for the steps the input's cannot take.
-      Laplacian current_laplacian(n, triangles);
+      // The Laplacian of the current mesh, for the steps the input's cannot
+      // take; built on first use (its pattern is a few MiB a million triangles).
+      std::unique_ptr<Laplacian> current_laplacian;
       SparseCholesky current_factorization;
       bool current_analyzed = false;
 
@@ -305,6 +307,9 @@ DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>&
         x = std::move(flat.positions);
         state = std::move(flat.states);
         planes = std::move(flat.planes);
+        // From here on only the flat charts' systems are solved.
+        factorization.release();
+        current_factorization.release();
         result.flat_iteration = iteration;
         result.collapsed_on_purpose = flat.collapsed_on_purpose;
       };
@@ -391,11 +396,12 @@ DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>&
           result.seconds.solve += phase.lap();
           if (step.limited > 0) {
             const CotangentWeights current = cotangent_weights(x, triangles).cwiseMax(0.0);
-            const double current_shift = current_laplacian.assemble(current, kRelativeShift);
-            if (!current_analyzed) current_factorization.analyze(current_laplacian.matrix(), true);
+            if (!current_laplacian) current_laplacian = std::make_unique<Laplacian>(n, triangles);
+            const double current_shift = current_laplacian->assemble(current, kRelativeShift);
+            if (!current_analyzed) current_factorization.analyze(current_laplacian->matrix(), true);
             current_analyzed = true;
             result.seconds.assemble += phase.lap();
-            current_factorization.factorize(current_laplacian.matrix());
+            current_factorization.factorize(current_laplacian->matrix());
             result.seconds.factorize += phase.lap();
             rhs = poisson_rhs(x, triangles, current, triangle_labels) + current_shift * x;
             result.seconds.rotations += phase.lap();

@@ -23,6 +23,7 @@ SparseCholesky::~SparseCholesky() = default;
 
 void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& matrix, bool reused) {
   rows_ = matrix.rows();
+  released_backend_ = nullptr;
   backends_ = std::make_unique<Backends>();
 #ifdef POLYCUBE_WITH_CHOLMOD
   if (matrix.rows() >= kSupernodalThreshold) {
@@ -73,7 +74,13 @@ Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& rhs) const {
   return backends_->simplicial->solve(rhs);
 }
 
+void SparseCholesky::release() {
+  released_backend_ = backend();
+  backends_ = std::make_unique<Backends>();
+}
+
 const char* SparseCholesky::backend() const {
+  if (released_backend_) return released_backend_;
 #ifdef POLYCUBE_WITH_CHOLMOD
   if (backends_->supernodal) return "cholmod-supernodal";
 #endif

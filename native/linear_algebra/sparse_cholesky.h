@@ -32,6 +32,10 @@ class SparseCholesky {
   Eigen::MatrixX3d solve(const Eigen::MatrixX3d& rhs) const;
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const;
 
+  // Frees the factor (most of this object's memory) once no more solves are
+  // due; backend() and factorizations() still answer.
+  void release();
+
   const char* backend() const;
   Eigen::Index rows() const { return rows_; }
   int factorizations() const { return factorizations_; }
@@ -40,6 +44,7 @@ class SparseCholesky {
   struct Backends;
   std::unique_ptr<Backends> backends_;
   int factorizations_ = 0;
+  const char* released_backend_ = nullptr;
   Eigen::Index rows_ = 0;
 };
 
