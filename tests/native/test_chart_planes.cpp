@@ -146,7 +146,9 @@ TEST(FlattenCharts, RelaxationStaysExactAndFoldFree) {
     EXPECT_EQ(seen[i].normal_deviation_max_deg, 0.0);
     EXPECT_EQ(seen[i].flipped_faces, 0);
     const bool opened = i > 0 && seen[i].collapsed_faces < seen[i - 1].collapsed_faces;
-    if (!opened) EXPECT_LE(seen[i].edge_error, edge + 1e-9);
+    if (!opened) {
+      EXPECT_LE(seen[i].edge_error, edge + 1e-9);
+    }
     edge = seen[i].edge_error;
   }
   EXPECT_LT(r.figures.edge_error, 0.9 * seen[r.flat_iteration - 1].edge_error);
