@@ -40,8 +40,8 @@ constexpr double kStalled = 0.9;
 
 struct Triangle {
   std::array<std::array<int, 2>, 3> unknown;  // per corner: the unknowns of its two in-plane coordinates
-  Eigen::Matrix2d inverse_reference;           // of the scaled input edges (columns)
-  double weight = 0.0;                         // scaled input area
+  Eigen::Matrix2d inverse_reference;          // of the scaled input edges (columns)
+  double weight = 0.0;                        // scaled input area
 };
 
 // The two in-plane axes of a label, ordered so that a positive determinant
@@ -80,7 +80,8 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
   // The input's shapes, scaled to the polycube's total area.
   double area_in = 0.0, area_flat = 0.0;
   for (Eigen::Index t = 0; t < count; ++t) {
-    const Eigen::Vector3d a = input.row(triangles(t, 0)), b = input.row(triangles(t, 1)), c = input.row(triangles(t, 2));
+    const Eigen::Vector3d a = input.row(triangles(t, 0)), b = input.row(triangles(t, 1)),
+                          c = input.row(triangles(t, 2));
     const Eigen::Vector3d p = flat.row(triangles(t, 0)), q = flat.row(triangles(t, 1)), r = flat.row(triangles(t, 2));
     area_in += 0.5 * (b - a).cross(c - a).norm();
     area_flat += 0.5 * (q - p).cross(r - p).norm();
@@ -131,7 +132,6 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
   for (int v = 0; v < n; ++v)
     for (int axis = 0; axis < 3; ++axis) uses[unknown_of(v, axis)] += 1.0;
 
-
   std::vector<Triangle> all;
   all.reserve(count);
   for (Eigen::Index t = 0; t < count; ++t) {
@@ -159,8 +159,8 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
   // Unknowns joined to put triangles without room on a line.
   UnionFind joined(unknowns);
   Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(value.data(), unknowns);
-  std::vector<Triangle> active;   // in slots, those with room
-  std::vector<int> source;        // active -> all
+  std::vector<Triangle> active;     // in slots, those with room
+  std::vector<int> source;          // active -> all
   std::vector<int> slot(unknowns);  // unknown -> entry of the minimised vector
   Eigen::VectorXd y;
   auto rebuild = [&]() {
@@ -199,29 +199,29 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
     double total = 0.0;
 #pragma omp parallel for num_threads(threads) reduction(+ : total) schedule(static)
     for (int chunk = 0; chunk < threads; ++chunk) {
-     Eigen::VectorXd& part = partial[chunk];
-     part.setZero(at.size());
-     for (long i = size * chunk / threads; i < size * (chunk + 1) / threads; ++i) {
-      const Triangle& t = active[i];
-      Eigen::Matrix2d j;
-      const double d = determinant(t, at, &j);
-      const double root = std::sqrt(eps * eps + d * d);
-      const double chi = 0.5 * (d + root), chi_d = 0.5 * (1.0 + d / root);
-      const double frobenius = j.squaredNorm();
-      total += t.weight * ((1.0 - kTheta) * frobenius + kTheta * (d * d + 1.0)) / chi;
-      // d/dJ, then through J = edges * inverse_reference to the corners.
-      Eigen::Matrix2d cofactor;
-      cofactor << j(1, 1), -j(1, 0), -j(0, 1), j(0, 0);
-      const double by_d = ((1.0 - kTheta) * -frobenius / (chi * chi) * chi_d +
-                           kTheta * (2.0 * d / chi - (d * d + 1.0) / (chi * chi) * chi_d));
-      const Eigen::Matrix2d by_j = t.weight * ((1.0 - kTheta) * 2.0 / chi * j + by_d * cofactor);
-      const Eigen::Matrix2d by_edges = by_j * t.inverse_reference.transpose();
-      for (int c = 0; c < 2; ++c) {
-        part[t.unknown[1][c]] += by_edges(c, 0);
-        part[t.unknown[2][c]] += by_edges(c, 1);
-        part[t.unknown[0][c]] -= by_edges(c, 0) + by_edges(c, 1);
+      Eigen::VectorXd& part = partial[chunk];
+      part.setZero(at.size());
+      for (long i = size * chunk / threads; i < size * (chunk + 1) / threads; ++i) {
+        const Triangle& t = active[i];
+        Eigen::Matrix2d j;
+        const double d = determinant(t, at, &j);
+        const double root = std::sqrt(eps * eps + d * d);
+        const double chi = 0.5 * (d + root), chi_d = 0.5 * (1.0 + d / root);
+        const double frobenius = j.squaredNorm();
+        total += t.weight * ((1.0 - kTheta) * frobenius + kTheta * (d * d + 1.0)) / chi;
+        // d/dJ, then through J = edges * inverse_reference to the corners.
+        Eigen::Matrix2d cofactor;
+        cofactor << j(1, 1), -j(1, 0), -j(0, 1), j(0, 0);
+        const double by_d = ((1.0 - kTheta) * -frobenius / (chi * chi) * chi_d +
+                             kTheta * (2.0 * d / chi - (d * d + 1.0) / (chi * chi) * chi_d));
+        const Eigen::Matrix2d by_j = t.weight * ((1.0 - kTheta) * 2.0 / chi * j + by_d * cofactor);
+        const Eigen::Matrix2d by_edges = by_j * t.inverse_reference.transpose();
+        for (int c = 0; c < 2; ++c) {
+          part[t.unknown[1][c]] += by_edges(c, 0);
+          part[t.unknown[2][c]] += by_edges(c, 1);
+          part[t.unknown[0][c]] -= by_edges(c, 0) + by_edges(c, 1);
+        }
       }
-     }
     }
     gradient = partial[0];
     for (int chunk = 1; chunk < threads; ++chunk) gradient += partial[chunk];
