@@ -9,7 +9,9 @@ Each model: `polycube label IN` (timed), then `polycube deform IN --labels L`
 (timed), writing the polycube and the labels the run ended with. A model is
 *exact* when its largest normal deviation from the final labels is below
 0.5 degrees, no face is flipped and it has no more folded edges than the
-input; *good* when also under 0.5% of the area and 1% of the faces collapsed.
+input; *good* when also under 0.5% of the area and 1% of the faces collapsed
+and the labeller's labels pass `validate` (*valid*: an exact polycube of
+labels that break the polycube conditions is degenerate).
 Suzanne (and Suzanne with a level-2 subdivision surface applied) is exported
 from Blender once into build/data/.
 """
@@ -18,6 +20,7 @@ import concurrent.futures
 import json
 import os
 import pathlib
+import re
 import subprocess
 import sys
 import time
@@ -229,6 +232,7 @@ def run_model(name, path, program, out, extra):
     if run.returncode != 0:
         return {"model": name, "error": "label: " + run.stderr.strip()}
     label_seconds = time.perf_counter() - start
+    violations = re.search(r"(\d+) violations", run.stdout)
     start = time.perf_counter()
     run = subprocess.run([program, "deform", str(path), "--labels", str(labels_file), "--output", str(polycube),
                           "--output-labels", str(final_labels), "--report", str(report)],
@@ -249,7 +253,9 @@ def run_model(name, path, program, out, extra):
     given_figures = figures(v_in, v_out, faces, given)
     row["max_deg_given"], row["flipped_given"] = given_figures["max_deg"], given_figures["flipped"]
     row["exact"] = bool(row["max_deg"] < 0.5 and row["flipped"] == 0 and row["folded_out"] <= row["folded_in"])
-    row["good"] = bool(row["exact"] and row["collapsed_area_pct"] < 0.5 and row["collapsed_faces_pct"] < 1.0)
+    row["valid"] = bool(violations and violations.group(1) == "0")
+    row["good"] = bool(row["exact"] and row["valid"] and row["collapsed_area_pct"] < 0.5 and
+                       row["collapsed_faces_pct"] < 1.0)
     return row
 
 
@@ -268,7 +274,7 @@ def run_guarded(name, *args):
 
 
 COLUMNS = [("model", "{model}"), ("faces", "{faces}"), ("charts", "{charts}"), ("exact", "{exact}"),
-           ("good", "{good}"), ("max°", "{max_deg:.2f}"), ("max° given", "{max_deg_given:.2f}"),
+           ("valid", "{valid}"), ("good", "{good}"), ("max°", "{max_deg:.2f}"), ("max° given", "{max_deg_given:.2f}"),
            ("flipped", "{flipped}"), ("flipped given", "{flipped_given}"),
            ("folded in→out", "{folded_in}→{folded_out}"),
            ("collapsed area %", "{collapsed_area_pct:.2f}"), ("collapsed faces %", "{collapsed_faces_pct:.2f}"),
@@ -304,7 +310,7 @@ def main():
             else:
                 print("| " + " | ".join(f.format(**row) for _, f in COLUMNS) + " |", flush=True)
     done = [r for r in rows if "error" not in r]
-    print(f"\nexact {sum(r['exact'] for r in done)}/{len(rows)}, good (also < 0.5% area, < 1% faces collapsed) "
+    print(f"\nexact {sum(r['exact'] for r in done)}/{len(rows)}, good (also valid labels, < 0.5% area, < 1% faces collapsed) "
           f"{sum(r['good'] for r in done)}/{len(rows)}")
     if args.json:
         pathlib.Path(args.json).write_text(json.dumps(rows, indent=1))
