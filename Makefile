@@ -93,9 +93,11 @@ fuzz: deps
 	else tail -80 $(FUZZ_BUILD)/fuzz.log; ls -l $(FUZZ_BUILD)/crashes; exit 1; fi
 
 # Speed, memory and ratios against the paper-literal variant and a SciPy
-# reference, on real models and their ~1M-triangle refinements (not part of test).
+# reference, on real models and their ~1M-triangle refinements (not part of test);
+# QUICK=1: the models at their own size only. Every run is bounded; the table
+# (build/bench/results.md, .json) is written after every row.
 bench: build data
-	$(PYTHON) tests/benchmark/bench.py --build $(BUILD)
+	$(PYTHON) tests/benchmark/bench.py --build $(BUILD) $(if $(QUICK),--quick)
 
 clean:
 	rm -rf $(BUILD) $(FUZZ_BUILD) dist addon/*.so

@@ -60,6 +60,9 @@ int deform_command(const std::vector<std::string>& args) {
   bool plain = false;
   add_plain_labels_option(app, plain);
   app.add_option("--report", report_path, "the figures and timings as JSON")->type_name("REPORT.json");
+  app.add_flag("--time-references", options.time_references,
+               "also time one back-substitution and one measurement of this mesh\n"
+               "(reference_seconds: what `make bench` states an iteration's cost against)");
   if (!parse_arguments(app, args)) return 0;
   options.variant = parse_variant(variant);
 

@@ -77,6 +77,23 @@ class Stopwatch {
   std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };
 
+// Adds the time from its construction to its destruction to a stage's cost,
+// and to `also`.
+class StageTimer {
+ public:
+  StageTimer(StageCost& cost, double& also) : cost_(cost), also_(also) { ++cost_.count; }
+  ~StageTimer() {
+    const double seconds = clock_.lap();
+    cost_.seconds += seconds;
+    also_ += seconds;
+  }
+
+ private:
+  StageCost& cost_;
+  double& also_;
+  Stopwatch clock_;
+};
+
 // Below the tolerance, and not by collapsing: collapsed triangles are left out
 // of the normal figures, so a mesh squeezed flat or to a point would pass
 // (the paper's `current` variant does that to armadillo and bunny00).
@@ -175,6 +192,11 @@ DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>&
     solution = factorization.solve(rhs);
     return place(solution);
   };
+  // An iteration's time goes to its stage (StageSeconds), less the attempts
+  // at flattening it made, which are a stage of their own.
+  StageCost* stage = &result.stages.continuous;
+  Stopwatch iteration_clock;
+  double flattening = 0.0;
   // Measures, reports to the callback; false when the run must stop.
   auto finish_iteration = [&](int iteration) {
     result.figures = quality.measure(x, static_cast<bool>(callback));
@@ -182,11 +204,15 @@ DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>&
     result.converged = converged(result.figures, options.tolerance_deg, triangles.rows());
     consider_acceptable(iteration);
     result.seconds.measure += phase.lap();
+    stage->seconds += iteration_clock.lap() - flattening;
+    ++stage->count;
+    flattening = 0.0;
     if (callback && !callback(iteration, x, result.figures)) {
       result.stopped = true;
       return false;
     }
     phase.lap();  // time spent in the callback belongs to the caller
+    iteration_clock.lap();
     return true;
   };
 
@@ -251,6 +277,7 @@ DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>&
       auto try_flatten = [&](int iteration) {
         if (planes || flatten_attempts >= kMaxFlattenAttempts) return;
         ++flatten_attempts;
+        const StageTimer timer(result.stages.flatten, flattening);
         last_attempt = iteration;
         FlatCharts flat = flatten_charts(mesh.vertices, x, triangles, triangle_labels, weights, laplacian.matrix(),
                                          shift, quality, place);
@@ -319,6 +346,7 @@ DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>&
       double best_max = state.max_deviation_deg;
       for (int iteration = 1; iteration <= options.iterations && (!result.converged || (planes && !relaxed));
            ++iteration) {
+        stage = planes ? &result.stages.relax : exact ? &result.stages.continuous : &result.stages.fit;
         if (planes) {
           // Relaxing the flat polycube. Two flat shapes with the same charts
           // blend into a flat shape, so the step is shortened as a whole
@@ -395,6 +423,7 @@ DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>&
           step = controlled_step(solve(factorization, rhs));
           result.seconds.solve += phase.lap();
           if (step.limited > 0) {
+            ++result.stages.current_steps;
             const CotangentWeights current = cotangent_weights(x, triangles).cwiseMax(0.0);
             if (!current_laplacian) current_laplacian = std::make_unique<Laplacian>(n, triangles);
             const double current_shift = current_laplacian->assemble(current, kRelativeShift);
@@ -515,8 +544,19 @@ DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>&
   }
   result.factorizations += factorization.factorizations();
   result.solver = factorization.backend();
-  result.positions = std::move(x);
   result.seconds.total = total.lap();
+  if (options.time_references) {
+    if (factorization.factorizations() > 0) {
+      const Eigen::MatrixX3d rhs = x;
+      phase.lap();
+      const Eigen::MatrixX3d solved = factorization.solve(rhs);
+      result.reference_solve_seconds = phase.lap();
+    }
+    phase.lap();
+    quality.measure(x);
+    result.reference_measure_seconds = phase.lap();
+  }
+  result.positions = std::move(x);
   return result;
 }
 

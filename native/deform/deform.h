@@ -74,10 +74,28 @@ struct DeformOptions {
   // labeller's straightened shape; empty: the input. Energies and figures are
   // always measured against the input.
   Vertices start;
+  // Also time one back-substitution with the input's factorisation and one
+  // measurement of the result (DeformResult::reference_seconds): the units
+  // `make bench` states the cost of an iteration in.
+  bool time_references = false;
 };
 
 struct PhaseSeconds {
   double total = 0, assemble = 0, factorize = 0, rotations = 0, solve = 0, measure = 0;
+};
+
+// Where an iteration's time goes, by stage of the robust variant (docs/design.md
+// section 2.6): fitting, the continuous fallback, relaxing flat charts (each
+// iteration's own time, measurement included, flattening attempts left out),
+// and the attempts at flattening. The other variants count every iteration
+// as continuous.
+struct StageCost {
+  int count = 0;        // iterations, or calls for `flatten` (each a few solves: flatten_attempts)
+  double seconds = 0.0;
+};
+struct StageSeconds {
+  StageCost fit, continuous, relax, flatten;
+  int current_steps = 0;  // continuous steps that needed the current mesh's Laplacian
 };
 
 struct DeformResult {
@@ -127,6 +145,11 @@ struct DeformResult {
   int factorizations = 0;   // numeric factorisations of a Laplacian
   std::string solver;       // the factorisation used (sparse_cholesky.h)
   PhaseSeconds seconds;
+  StageSeconds stages;
+  // With DeformOptions::time_references: one back-substitution (3 right-hand
+  // sides) with the input's factorisation and one measurement of every figure
+  // of the result, in seconds; 0 otherwise.
+  double reference_solve_seconds = 0.0, reference_measure_seconds = 0.0;
 };
 
 // Called after each iteration with its number (from 1), the positions and their

@@ -60,6 +60,14 @@ Json deform_report(const PolygonMesh& mesh, const DeformResult& r, const DeformO
   json["seconds"] = {{"total", r.seconds.total},         {"assemble", r.seconds.assemble},
                      {"factorize", r.seconds.factorize}, {"rotations", r.seconds.rotations},
                      {"solve", r.seconds.solve},         {"measure", r.seconds.measure}};
+  Json& stages = json["stages"] = Json::object();
+  const std::pair<const char*, const StageCost*> stage_costs[] = {
+      {"fit", &r.stages.fit}, {"continuous", &r.stages.continuous}, {"relax", &r.stages.relax},
+      {"flatten", &r.stages.flatten}};
+  for (const auto& [name, cost] : stage_costs) stages[name] = {{"count", cost->count}, {"seconds", cost->seconds}};
+  stages["current_steps"] = r.stages.current_steps;
+  if (options.time_references)
+    json["reference_seconds"] = {{"solve", r.reference_solve_seconds}, {"measure", r.reference_measure_seconds}};
   return json;
 }
 
