@@ -47,7 +47,9 @@ namespace polycube {
 //    over an eighth of the surface: elephant, anchor, armadillo, bunny00 with
 //    nearest-axis labels), the continuous iteration goes on: the paper's step
 //    with the input Laplacian, or, where that would fold a face, with the
-//    current mesh's Laplacian, which collapses faces without turning them;
+//    current mesh's Laplacian, which collapses faces without turning them
+//    (solved by conjugate gradients preconditioned by the input's
+//    factorisation: no factorisation per iteration);
 // 5. every step fold-free (fold_free_step.h): faces never turn over;
 // 6. when progress stalls, faces held back near 90 degrees that fit a
 //    neighbour's label better are relabelled (relabel_stalled_faces.h, listed in
@@ -148,7 +150,7 @@ struct DeformResult {
   StageSeconds stages;
   // With DeformOptions::time_references: one back-substitution (3 right-hand
   // sides) with the input's factorisation and one measurement of every figure
-  // of the result, in seconds; 0 otherwise.
+  // of the result, in seconds (the median of three); 0 otherwise.
   double reference_solve_seconds = 0.0, reference_measure_seconds = 0.0;
 };
 

@@ -21,7 +21,8 @@ std::vector<Eigen::Index> new_folds(const FaceStates& states, const FaceStates& 
 }
 
 // The largest fraction 1/2, 1/4, ... of the whole step that folds nothing; the
-// step is zero if none does.
+// step is zero if none does. Trials ask only whether they fold; the one taken
+// is measured in full.
 void shorten_whole_step(const Vertices& from, const FaceStates& from_states, const Vertices& to,
                         const QualityMeasure& measure, std::vector<double>& alpha, FoldFreeStep& step) {
   std::fill(alpha.begin(), alpha.end(), 0.0);
@@ -29,11 +30,10 @@ void shorten_whole_step(const Vertices& from, const FaceStates& from_states, con
   step.states = from_states;
   for (double fraction = 0.5; fraction > 0x1p-10; fraction *= 0.5) {
     Vertices trial = from + fraction * (to - from);
-    FaceStates states = measure.face_states(trial);
-    if (!new_folds(states, from_states).empty()) continue;
+    if (measure.folds_beyond(trial, from_states.flipped)) continue;
     std::fill(alpha.begin(), alpha.end(), fraction);
+    step.states = measure.face_states(trial);
     step.positions = std::move(trial);
-    step.states = std::move(states);
     return;
   }
 }

@@ -119,6 +119,28 @@ void QualityMeasure::update_face_state(const Vertices& output, Eigen::Index f, F
   s.flipped[f] = unit.dot(axis) < 0.0;
 }
 
+bool QualityMeasure::folds_beyond(const Vertices& output, const std::vector<char>& before) const {
+  const Eigen::Index count = triangles_.rows();
+  const int threads = parallel_threads(count);
+  std::vector<double> area(count), along(count);  // along: doubled normal . label axis
+  double total = 0.0;
+#pragma omp parallel for num_threads(threads) reduction(+ : total)
+  for (Eigen::Index f = 0; f < count; ++f) {
+    const Eigen::Vector3d normal = doubled_normal(output, triangles_, f);
+    area[f] = 0.5 * normal.norm();
+    along[f] = normal.dot(label_axis(labels_[f]));
+    total += area[f];
+  }
+  const double scale2 = input_total_ > 0.0 && total > 0.0 ? total / input_total_ : 1.0;
+  int folds = 0;
+#pragma omp parallel for num_threads(threads) reduction(+ : folds)
+  for (Eigen::Index f = 0; f < count; ++f) {
+    const bool collapsed = area[f] <= kCollapsedAreaRatio * scale2 * input_area_[f] || area[f] == 0.0;
+    folds += !before[f] && !collapsed && along[f] < 0.0;
+  }
+  return folds > 0;
+}
+
 Figures QualityMeasure::measure(const Vertices& output, bool errors) const {
   return measure(output, face_states(output), errors);
 }

@@ -64,11 +64,16 @@ class QualityMeasure {
   // for local changes, where a full pass per change would cost O(mesh).
   // flipped_count and max_deviation_deg are not updated.
   void update_face_state(const Vertices& output, Eigen::Index f, FaceStates& states) const;
+  // Whether `output` turns over a triangle not flipped in `before` (the same
+  // definition as FaceStates::flipped), without the rest of the states: what
+  // the step control's line search needs per trial, at a fraction of
+  // face_states' cost (no angles).
+  bool folds_beyond(const Vertices& output, const std::vector<char>& before) const;
   // Without `errors`, the edge and area error means are left at 0: the
   // stopping rule needs only the normal figures, and the edge pass is the
   // costliest part.
   Figures measure(const Vertices& output, bool errors = true) const;
-  // The same from the face states of output, when the caller has them.
+  // The same from `states` = face_states(output), already measured.
   Figures measure(const Vertices& output, const FaceStates& states, bool errors = true) const;
 
   // The share of the input's area in the collapsed triangles of `states`.

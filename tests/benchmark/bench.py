@@ -34,7 +34,8 @@ settings, wall time and peak RSS of the process (median of --whole-runs runs;
 one run for the refined models), with the load average, since the machine
 may be shared.
 
-Writes build/bench/results.md, results.json and whole_process.json.
+Writes build/bench/results.md, results.json and whole_process.json (or into
+--output).
 """
 import argparse
 import json
@@ -289,7 +290,7 @@ def write_results(out_dir, rows, whole, args):
     return "\n".join(lines)
 
 
-def prepare_cases(args, program, out_dir):
+def prepare_cases(args, program, models_dir):
     cases = []
     for name, mesh, labels, levels in MODELS:
         if name not in args.models.split(","):
@@ -302,7 +303,7 @@ def prepare_cases(args, program, out_dir):
         cases.append((name, str(mesh_path), labels_arg))
         if args.quick:
             continue
-        refined = out_dir / "models" / f"{name}-x{4 ** levels}.ply"
+        refined = models_dir / f"{name}-x{4 ** levels}.ply"
         if not refined.exists():
             command = [program, "refine", str(mesh_path), "--levels", str(levels), "--scheme", "bilinear",
                        "--output", str(refined)]
@@ -386,6 +387,7 @@ def main():
     parser.add_argument("--scipy-compare-iterations", type=int, default=50,
                         help="iterations of `fixed` compared with SciPy (extrapolated on the SciPy side)")
     parser.add_argument("--models", default=",".join(m[0] for m in MODELS))
+    parser.add_argument("--output", help="where results.md and results.json go (default: BUILD/bench)")
     parser.add_argument("--quick", "--no-refined", action="store_true",
                         help="the models at their own size only (no ~1M-triangle refinements)")
     parser.add_argument("--whole-runs", type=int, default=5,
@@ -397,8 +399,10 @@ def main():
     build = pathlib.Path(args.build).resolve()
     sys.path.insert(0, str(build))
     program = str(build / "polycube")
-    out_dir = build / "bench"
-    (out_dir / "models").mkdir(parents=True, exist_ok=True)
+    out_dir = pathlib.Path(args.output) if args.output else build / "bench"
+    out_dir.mkdir(parents=True, exist_ok=True)
+    models_dir = build / "bench" / "models"  # the refined models, made once
+    models_dir.mkdir(parents=True, exist_ok=True)
 
     rows, whole = [], []
 
@@ -411,7 +415,7 @@ def main():
         write_results(out_dir, rows, whole, args)
 
     write_results(out_dir, rows, whole, args)
-    cases = prepare_cases(args, program, out_dir)
+    cases = prepare_cases(args, program, models_dir)
     whole_process_rows(program, [(name, mesh, labels, 1 if " x" in name else None)
                                  for name, mesh, labels in cases if mesh is not None],
                        args.whole_runs, args.timeout, add_whole_row)

@@ -254,6 +254,50 @@ TEST(Robust, FoldFreeStepHoldsOnlyWhatWouldFold) {
   EXPECT_EQ(step.limited, 3);
 }
 
+// The continuous fallback solves the current mesh's Laplacian with the
+// input's factorisation (preconditioned_cg.h): once flattening has been tried
+// for the last time, further iterations factorise nothing, and every one of
+// them is still fold-free. anchor's nearest-axis labels never flatten.
+TEST(Robust, ContinuousFallbackFactorisesNothingPerIteration) {
+  const Model model = load("anchor");
+  if (model.mesh.vertices.rows() == 0) GTEST_SKIP() << "libcgal-demo meshes missing";
+  const DeformResult shorter = deform(model.mesh, model.labels, options(Variant::kRobust, 40));
+  const DeformResult longer = deform(model.mesh, model.labels, options(Variant::kRobust, 60));
+  ASSERT_EQ(longer.flatten_attempts.size(), shorter.flatten_attempts.size());
+  EXPECT_EQ(longer.iterations, 60);
+  EXPECT_GE(longer.stages.current_steps, shorter.stages.current_steps + 15);
+  EXPECT_EQ(longer.factorizations, shorter.factorizations);
+  EXPECT_EQ(longer.stages.continuous.count + longer.stages.fit.count, 60);
+  EXPECT_EQ(longer.figures.flipped_faces, 0);
+  EXPECT_LE(longer.figures.folded_edges, longer.input_folded_edges);
+}
+
+// The step control's trials ask only whether a shape folds: the same answer
+// as comparing full face states.
+TEST(Robust, FoldsBeyondAgreesWithFaceStates) {
+  const PolygonMesh mesh = test_meshes::uv_sphere(24, 12);
+  const Triangles triangles = triangulate(mesh.vertices, mesh.faces).triangles;
+  std::vector<int> labels(triangles.rows());
+  const std::vector<int> polygon_labels = nearest_labels(mesh);
+  for (Eigen::Index t = 0; t < triangles.rows(); ++t)
+    labels[t] = polygon_labels[triangulate(mesh.vertices, mesh.faces).face_of_triangle[t]];
+  const QualityMeasure measure(mesh.vertices, triangles, labels);
+  const FaceStates before = measure.face_states(mesh.vertices);
+  int folding = 0;
+  for (double noise : {0.0, 0.01, 0.05, 0.2, 0.5}) {
+    std::srand(7);
+    const Vertices moved = mesh.vertices + noise * Vertices::Random(mesh.vertices.rows(), 3);
+    const FaceStates after = measure.face_states(moved);
+    bool folds = false;
+    for (size_t t = 0; t < after.flipped.size(); ++t) folds |= after.flipped[t] && !before.flipped[t];
+    EXPECT_EQ(measure.folds_beyond(moved, before.flipped), folds) << noise;
+    // Everything that folds now, allowed: nothing beyond it.
+    EXPECT_FALSE(measure.folds_beyond(moved, after.flipped)) << noise;
+    folding += folds;
+  }
+  EXPECT_GE(folding, 2);  // the test sees both answers
+}
+
 TEST(Robust, IsTheDefault) {
   EXPECT_EQ(DeformOptions{}.variant, Variant::kRobust);
   EXPECT_EQ(parse_variant("robust"), Variant::kRobust);
