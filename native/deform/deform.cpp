@@ -287,6 +287,25 @@ DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>&
         return -1.0;
       };
 
+      // A flat shape's collapsed and turned-over triangles opened inside
+      // their charts (untangle_flat_charts.h), placed like every solve;
+      // fold-free when nothing is turned over and no more edges fold than
+      // in the input.
+      struct Opened {
+        Vertices positions;
+        FaceStates states;
+        bool fold_free = false;
+      };
+      auto untangle_from = [&](const Vertices& flat_start) {
+        Opened opened;
+        opened.positions = place(untangle_flat_charts(mesh.vertices, flat_start, triangles, triangle_labels).positions);
+        opened.states = quality.face_states(opened.positions);
+        opened.fold_free = opened.states.flipped_count == 0 &&
+                           quality.measure(opened.positions, opened.states, false).folded_edges <=
+                               result.input_folded_edges;
+        return opened;
+      };
+
       // Phase 3 (flatten_charts.h): the exact polycube, every chart flat,
       // fold-free; then relaxed inside the flat charts.
       std::unique_ptr<ChartPlanes> planes;
@@ -332,16 +351,11 @@ DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>&
           // Refused: the linear solve folds or collapses too much. Its
           // first, global solution is flat on the same charts: untangled
           // inside them (untangle_flat_charts.h) it may have room for all.
-          const UntangledCharts untangled =
-              untangle_flat_charts(mesh.vertices, flat.first_positions, triangles, triangle_labels);
-          Vertices opened = place(untangled.positions);
-          FaceStates opened_state = quality.face_states(opened);
-          const double collapsed_area = quality.collapsed_area_fraction(opened_state);
+          Opened opened = untangle_from(flat.first_positions);
           result.seconds.solve += phase.lap();
-          if (opened_state.flipped_count == 0 && collapsed_area <= kMaxCollapsedAreaFraction &&
-              quality.measure(opened, false).folded_edges <= result.input_folded_edges) {
-            flat.positions = std::move(opened);
-            flat.states = std::move(opened_state);
+          if (opened.fold_free && quality.collapsed_area_fraction(opened.states) <= kMaxCollapsedAreaFraction) {
+            flat.positions = std::move(opened.positions);
+            flat.states = std::move(opened.states);
             flat.planes = std::make_unique<ChartPlanes>(n, triangles, triangle_labels);
             flat.found = true;
             result.untangled = true;
@@ -401,13 +415,10 @@ DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>&
           if ((!found || relaxed) && !untangle_tried && count(state.collapsed) > 0 &&
               (!result.untangled || quality.collapsed_area_fraction(state) > kUntangleAgainAbove)) {
             untangle_tried = true;
-            const UntangledCharts untangled = untangle_flat_charts(mesh.vertices, x, triangles, triangle_labels);
-            const Vertices opened = place(untangled.positions);
-            FaceStates opened_state = quality.face_states(opened);
-            if (opened_state.flipped_count == 0 && count(opened_state.collapsed) < count(state.collapsed) &&
-                quality.measure(opened, false).folded_edges <= result.input_folded_edges) {
-              x = opened;
-              state = std::move(opened_state);
+            Opened opened = untangle_from(x);
+            if (opened.fold_free && count(opened.states.collapsed) < count(state.collapsed)) {
+              x = std::move(opened.positions);
+              state = std::move(opened.states);
               planes = std::make_unique<ChartPlanes>(n, triangles, triangle_labels);
               result.untangled = true;
               untangled_at = iteration;
