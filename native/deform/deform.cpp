@@ -14,7 +14,6 @@
 #include "deform/fitted_rotations.h"
 #include "deform/flatten_charts.h"
 #include "deform/fold_free_step.h"
-#include "deform/move_boundaries_past.h"
 #include "deform/relabel_stalled_faces.h"
 #include "linear_algebra/laplacian.h"
 #include "mesh/mesh_adjacency.h"
@@ -46,8 +45,6 @@ constexpr double kFitStepTolerance = 1e-3;
 // Attempts at flattening the charts (flatten_charts.h): when the fitting
 // phase ends, then when progress stalls, each after a label repair.
 constexpr int kMaxFlattenAttempts = 3;
-// Rounds of moving chart boundaries past the faces a flat solve turns over.
-constexpr int kBoundaryMoves = 3;
 // Also retried this many iterations after the last attempt, stalled or not.
 constexpr int kRetryIterations = 10;
 // Stalled: the largest deviation has not dropped by kProgress (relative) for
@@ -322,31 +319,6 @@ DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>&
         result.factorizations += flat.planes->factorizations();
         result.flatten_attempts.push_back(
             {iteration, flat.rounds, flat.states.flipped_count, flat.collapsed_area, flat.found});
-        // Faces the flat solve turns over are mostly slivers on a chart
-        // boundary that turns back: moving the boundary past them (each
-        // takes the label of the neighbours across it) realises the charts
-        // without collapsing them, where collapsing them costs area.
-        for (int round = 0; round < kBoundaryMoves && !flat.first_flipped.empty(); ++round) {
-          std::vector<int> moved = result.labels;
-          if (move_boundaries_past(triangulation, adjacency, flat.first_flipped, moved) == 0) break;
-          std::vector<int> moved_triangles(triangles.rows());
-          for (size_t t = 0; t < moved_triangles.size(); ++t)
-            moved_triangles[t] = moved[triangulation.face_of_triangle[t]];
-          quality.set_labels(moved_triangles);
-          FlatCharts other = flatten_charts(mesh.vertices, x, triangles, moved_triangles, weights, laplacian.matrix(),
-                                            shift, quality, place);
-          result.seconds.factorize += phase.lap();
-          result.factorizations += other.planes->factorizations();
-          result.flatten_attempts.push_back(
-              {iteration, other.rounds, other.states.flipped_count, other.collapsed_area, other.found});
-          if (!other.found || (flat.found && other.collapsed_area >= flat.collapsed_area)) {
-            quality.set_labels(triangle_labels);
-            break;
-          }
-          result.labels = std::move(moved);
-          triangle_labels = std::move(moved_triangles);
-          flat = std::move(other);
-        }
         if (!flat.found && flat.first_positions.size() > 0) {
           // Refused: the linear solve folds or collapses too much. Its
           // first, global solution is flat on the same charts: untangled

@@ -106,7 +106,6 @@ FlatCharts flatten_charts(const Vertices& input, const Vertices& current, const 
     previous_flipped = result.rounds == 1 ? std::numeric_limits<int>::max() : result.states.flipped_count;
     result.states = quality.face_states(result.positions);
     if (result.rounds == 1) {
-      result.first_flipped = result.states.flipped;
       result.first_positions = result.positions;
     }
     result.collapsed_area = quality.collapsed_area_fraction(result.states);

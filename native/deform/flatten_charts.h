@@ -38,7 +38,6 @@ struct FlatCharts {
   FaceStates states;                   // of `positions`
   std::unique_ptr<ChartPlanes> planes; // the charts and collapses, factorised, for relax_flat_charts
   int rounds = 0;                      // flat-chart solves done
-  std::vector<char> first_flipped;     // per triangle: flipped by the first (global) solve
   Vertices first_positions;            // of the first (global) solve: flat, nothing collapsed on purpose
   int collapsed_on_purpose = 0;        // triangles collapsed to undo a fold
   double collapsed_area = 0.0;         // share of the input's area collapsed

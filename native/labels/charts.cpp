@@ -71,4 +71,11 @@ std::vector<std::vector<int>> chart_faces(const Charts& charts) {
   return faces;
 }
 
+std::vector<char> charts_with_open_side(const MeshAdjacency& adjacency, const Charts& charts) {
+  std::vector<char> open_side(charts.count(), 0);
+  for (int e = 0; e < adjacency.edge_count(); ++e)
+    if (adjacency.faces_of_edge(e) == 1) open_side[charts.of_face[adjacency.edge_faces[adjacency.edge_offsets[e]]]] = 1;
+  return open_side;
+}
+
 }  // namespace polycube

@@ -35,6 +35,13 @@ struct ChartBoundary {
 // Every chart boundary, ordered by chart pair.
 std::vector<ChartBoundary> chart_boundaries(const MeshAdjacency& adjacency, const Charts& charts);
 
+// Per chart, 1 when it reaches the mesh border (an edge with one face). Such
+// a chart has an open side where its missing neighbours would be, so the
+// four-neighbour rule does not apply to it (docs/design.md section 3.2): the
+// rule is a condition on closed surfaces, and a flat sheet is a polycube of
+// one chart.
+std::vector<char> charts_with_open_side(const MeshAdjacency& adjacency, const Charts& charts);
+
 // The distinct charts around vertex v, increasing.
 std::vector<int> charts_at_vertex(const MeshAdjacency& adjacency, const Charts& charts, int v);
 

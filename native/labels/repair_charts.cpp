@@ -30,12 +30,7 @@ int violation_score(const MeshAdjacency& adjacency, const std::vector<int>& labe
     ++neighbours[b];
     if ((ch.label[a] ^ 1) == ch.label[b]) score += 2;
   }
-  // A chart that reaches the mesh border has an open side where its missing
-  // neighbours would be: on open meshes the four-neighbour rule cannot hold,
-  // and forcing it merges whole sheets into one label.
-  std::vector<char> open_side(ch.count(), 0);
-  for (int e = 0; e < adjacency.edge_count(); ++e)
-    if (adjacency.faces_of_edge(e) == 1) open_side[ch.of_face[adjacency.edge_faces[adjacency.edge_offsets[e]]]] = 1;
+  const std::vector<char> open_side = charts_with_open_side(adjacency, ch);
   for (int c = 0; c < ch.count(); ++c)
     if (!open_side[c]) score += std::max(0, 4 - neighbours[c]);
   std::vector<int> around;
@@ -164,12 +159,14 @@ std::vector<Move> candidate_moves(const MeshAdjacency& adjacency, const LabelEne
   std::vector<Move> moves;
   switch (v.kind) {
     case ViolationKind::kTooFewNeighbours:
+      // Never the opposite label: a chart turned to face the other way points
+      // away from its axis, which no polycube realises (a reversed chart).
       for (int l = 0; l < 6; ++l)
-        if (l != v.label) moves.push_back({v.faces, l});
+        if (l / 2 != v.label / 2) moves.push_back({v.faces, l});
       // Two charts that only make sense together (a cap and its rim) move as one.
       for (int n : v.others)
         for (int l = 0; l < 6; ++l)
-          if (l != v.label && l != ch.label[n]) moves.push_back({joined(v.faces, chart_faces[n]), l});
+          if (l / 2 != v.label / 2 && l / 2 != ch.label[n] / 2) moves.push_back({joined(v.faces, chart_faces[n]), l});
       moves.push_back(absorb(v.chart, neighbours, ch, chart_faces));
       break;
     case ViolationKind::kOppositeNeighbours: {

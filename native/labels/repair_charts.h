@@ -20,8 +20,8 @@
 // The score counts each missing neighbour, each opposite pair (twice) and each
 // chart beyond three at a corner; only moves that lower it are kept, so the
 // repair ends. Charts that reach the mesh border are not held to four
-// neighbours (the validator still lists them): on an open mesh that rule would
-// merge whole sheets into one label. Deterministic.
+// neighbours (charts_with_open_side): on an open mesh that rule would merge
+// whole sheets into one label. Deterministic.
 #pragma once
 
 #include <vector>

@@ -54,10 +54,12 @@ LabelValidation validate_labels(const MeshAdjacency& adjacency, const Charts& ch
     neighbours[b.charts[0]].push_back(b.charts[1]);
     neighbours[b.charts[1]].push_back(b.charts[0]);
   }
-  // Too few neighbours; the faces are the whole chart (it has to change as a whole).
+  // Too few neighbours; the faces are the whole chart (it has to change as a
+  // whole). Not on charts with an open side (charts_with_open_side).
   std::vector<std::vector<int>> faces_of_chart;
+  const std::vector<char> open_side = charts_with_open_side(adjacency, charts);
   for (int c = 0; c < charts.count(); ++c) {
-    if (neighbours[c].size() >= 4) continue;
+    if (neighbours[c].size() >= 4 || open_side[c]) continue;
     if (faces_of_chart.empty()) faces_of_chart = chart_faces(charts);
     LabelViolation v{ViolationKind::kTooFewNeighbours, c, charts.label[c], neighbours[c], -1, faces_of_chart[c]};
     std::sort(v.others.begin(), v.others.end());

@@ -228,6 +228,32 @@ TEST(ValidateLabels, FaceWithAllCornersOnAnotherChartsPlaneIsSqueezed) {
   }
 }
 
+// A box without its top: each side touches the bottom and two sides, and
+// its open side is where the fourth neighbour would be. The four-neighbour
+// rule is for closed surfaces (docs/design.md section 3.2); the other rules
+// still hold on an open mesh.
+TEST(ValidateLabels, ChartsWithAnOpenSideNeedNoFourthNeighbour) {
+  const LabelledMesh box = box6();
+  LabelledMesh open;
+  open.mesh.vertices = box.mesh.vertices;
+  for (int f = 0; f < box.mesh.faces.count(); ++f) {
+    if (box.labels[f] == kPZ) continue;
+    const int* corner = &box.mesh.faces.indices[box.mesh.faces.offsets[f]];
+    open.mesh.faces.add({corner[0], corner[1], corner[2], corner[3]});
+    open.labels.push_back(box.labels[f]);
+  }
+  const LabelValidation v = validate_labels(open.mesh, open.labels);
+  EXPECT_TRUE(v.valid());
+  EXPECT_EQ(topological(v), 0u);
+  EXPECT_EQ(v.charts, 5);
+  // A closed chart on it is still held to four: one bottom corner quad
+  // labelled +Z touches the bottom and two sides only.
+  const std::vector<int> patch = faces_where(open, kNZ, [](auto c) { return c.x() > 5 && c.y() > 5; });
+  ASSERT_EQ(patch.size(), 1u);
+  relabel(open, patch, kPZ);
+  EXPECT_EQ(count_kind(validate_labels(open.mesh, open.labels), ViolationKind::kTooFewNeighbours), 1);
+}
+
 TEST(ValidateLabels, RejectsBadLabels) {
   const LabelledMesh box = box6();
   std::vector<int> labels = box.labels;
