@@ -11,6 +11,7 @@ import bpy
 import numpy as np
 from bpy.props import BoolProperty
 
+from . import label_cache
 from .background_call import BackgroundCall
 from .face_selection import poll_mesh_to_select_in, select_faces_in_edit_mode
 from .label_colours import colour_faces, colours_shown, hide_colours
@@ -152,6 +153,7 @@ in Blender 3.x, face maps +X ... -Z"""
     def _write(self, obj, mesh, labels):
         """Write the labels to the object (main thread) and say how they validate."""
         write_label_attribute(obj.data, labels)
+        label_cache.forget()  # the sidebar reads them afresh at its next draw
         mark_automatic(obj.data, labels)
         in_user_maps = write_face_maps(obj, labels) if hasattr(obj, "face_maps") else 0
         if colours_shown(obj.data):

@@ -9,6 +9,7 @@
 #include "mesh/check_input.h"
 #include "mesh/mesh_adjacency.h"
 #include "labels/faces_facing_away.h"
+#include "labels/open_caps.h"
 #include "labels/repair_charts.h"
 #include "labels/squeezed_triangles.h"
 #include "labeller/straighten.h"
@@ -104,6 +105,11 @@ AutoLabelOptions AutoLabelOptions::with_detail(double detail) {
   AutoLabelOptions options;
   options.compactness = 0.3 * std::pow(10.0, 1.0 - 2.0 * detail);
   options.straighten_rings = std::max(1, static_cast<int>(std::lround(3.0 * std::pow(4.0, 1.0 - 2.0 * detail))));
+  // Merging away small charts makes the coarse end of the knob what a user
+  // asks for there (Suzanne at 0: 12 charts, a head and its muzzle), but it
+  // loses limbs on organic models (the elephant's legs) and collapses more
+  // there, so the default keeps every chart the cut and the repair found.
+  options.simplify_below = std::max(0.0, 0.01 * (1.0 - 2.0 * detail));
   return options;
 }
 
@@ -127,9 +133,9 @@ std::vector<int> auto_labels(const PolygonMesh& input, const AutoLabelOptions& o
     labels[f] = best;  // the nearest axis (lowest label on ties)
   }
   labels = alpha_expansion(energy, std::move(labels));
+  std::vector<double> areas(mesh.faces.count());
+  for (int f = 0; f < mesh.faces.count(); ++f) areas[f] = 0.5 * newell_normal(mesh.vertices, mesh.faces, f).norm();
   if (options.repair) {
-    std::vector<double> areas(mesh.faces.count());
-    for (int f = 0; f < mesh.faces.count(); ++f) areas[f] = 0.5 * newell_normal(mesh.vertices, mesh.faces, f).norm();
     labels = merge_tiny_charts(adjacency, energy, areas, std::move(labels), options.repair_moves);
     labels = repair_charts(adjacency, energy, std::move(labels), options.repair_moves);
     labels = merge_tiny_charts(adjacency, energy, areas, std::move(labels), options.repair_moves);
@@ -151,6 +157,9 @@ std::vector<int> auto_labels(const PolygonMesh& input, const AutoLabelOptions& o
     }
     if (violation_score(adjacency, unsqueezed) <= violations) labels = std::move(unsqueezed);
   }
+  label_open_caps(mesh, adjacency, labels);
+  if (options.repair && options.simplify_below > 0.0)
+    labels = simplify_charts(adjacency, energy, areas, std::move(labels), options.simplify_below, options.repair_moves);
   if (straightened) *straightened = unit.box().from_unit(straight.vertices, mesh.vertices, input.vertices);
   return labels;
 }

@@ -19,6 +19,9 @@
 //    left are merged last.
 // 4. Relabel the triangles that flat charts would squeeze onto a line
 //    (labels/squeezed_triangles.h), and repair again, a few rounds.
+// 5. Open components that mostly look one way (an eyeball, a leaf) take
+//    one label: one flat chart each (labels/open_caps.h).
+// 6. At low detail, merge away small charts (simplify_below).
 // Deterministic: the same mesh and options give the same labels.
 #pragma once
 
@@ -32,8 +35,10 @@ struct AutoLabelOptions {
   // The options for one knob a user understands, `detail` in 0..1: 0 gives a
   // few large charts (a polycube a modeller would sketch), 1 many small ones
   // that follow every feature; 0.5 is the default below. It sets the
-  // compactness (3 at 0, 0.3 at 0.5, 0.03 at 1) and the straightening's
-  // smoothing rings (12, 3, 1). Throws Error outside 0..1.
+  // compactness (3 at 0, 0.3 at 0.5, 0.03 at 1), the straightening's
+  // smoothing rings (12, 3, 1) and, below 0.5, the share of the area under
+  // which charts are merged away (1% at 0, 0.5% at 0.25, none from 0.5).
+  // Throws Error outside 0..1.
   static AutoLabelOptions with_detail(double detail);
 
   // Weight of chart boundary length against fidelity to the normals: larger
@@ -43,6 +48,10 @@ struct AutoLabelOptions {
   int repair_moves = 200;    // at most this many repair moves (each fixes at least one violation)
   int straighten_iterations = 20;  // step 0; 0 reads the input's normals
   int straighten_rings = 3;
+  // Step 6: charts under this share of the area merge into a neighbour where
+  // a short repair keeps the polycube conditions (repair_charts.h,
+  // simplify_charts); 0 merges none.
+  double simplify_below = 0.0;
 };
 
 // One label 0..5 per face. Throws Error on input check_input rejects.

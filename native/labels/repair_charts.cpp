@@ -360,22 +360,28 @@ std::vector<int> Greedy::run(std::vector<int> labels, int& score, int max_moves,
   return labels;
 }
 
-}  // namespace
+// When no single move helps, the few least bad ones are each followed by a
+// short greedy run of this many moves.
+constexpr size_t kLookahead = 4;
+constexpr int kLookaheadMoves = 12;
 
-std::vector<int> repair_charts(const MeshAdjacency& adjacency, const LabelEnergy& energy, std::vector<int> labels,
-                               int max_moves) {
-  const int face_count = static_cast<int>(labels.size());
+Greedy make_greedy(const MeshAdjacency& adjacency, const LabelEnergy& energy, int face_count) {
   Greedy greedy{adjacency, energy, std::vector<std::vector<int>>(face_count),
                 std::max(2000L, 100000000L / std::max(1, face_count))};
   for (int e = 0; e < adjacency.edge_count(); ++e)
     for (int k = adjacency.edge_offsets[e]; k < adjacency.edge_offsets[e + 1]; ++k)
       greedy.face_edges[adjacency.edge_faces[k]].push_back(e);
+  return greedy;
+}
 
+}  // namespace
+
+std::vector<int> repair_charts(const MeshAdjacency& adjacency, const LabelEnergy& energy, std::vector<int> labels,
+                               int max_moves) {
+  Greedy greedy = make_greedy(adjacency, energy, static_cast<int>(labels.size()));
   int score = violation_score(adjacency, labels);
   // When no single move helps, try the few least bad ones followed by a short
   // greedy run each, and keep the first that ends below the score it started from.
-  constexpr size_t kLookahead = 4;
-  constexpr int kLookaheadMoves = 12;
   for (int attempt = 0; attempt < max_moves && score > 0; ++attempt) {
     std::vector<Stuck> stuck;
     labels = greedy.run(std::move(labels), score, max_moves, kLookahead, &stuck);
@@ -392,6 +398,49 @@ std::vector<int> repair_charts(const MeshAdjacency& adjacency, const LabelEnergy
       }
     }
     if (!escaped) break;
+  }
+  return labels;
+}
+
+std::vector<int> simplify_charts(const MeshAdjacency& adjacency, const LabelEnergy& energy,
+                                 const std::vector<double>& areas, std::vector<int> labels, double max_share,
+                                 int max_moves) {
+  const int face_count = static_cast<int>(labels.size());
+  Greedy greedy = make_greedy(adjacency, energy, face_count);
+  double total_area = 0.0;
+  for (double a : areas) total_area += a;
+  int score = violation_score(adjacency, labels);
+  for (int move = 0; move < max_moves && greedy.budget > 0; ++move) {
+    const Charts ch = charts(adjacency, labels);
+    const std::vector<std::vector<int>> faces_of_chart = chart_faces(ch);
+    std::vector<double> chart_area(ch.count(), 0.0);
+    for (int f = 0; f < face_count; ++f) chart_area[ch.of_face[f]] += areas[f];
+    std::vector<std::vector<int>> neighbours(ch.count());
+    for (const ChartBoundary& b : chart_boundaries(adjacency, ch)) {
+      neighbours[b.charts[0]].push_back(b.charts[1]);
+      neighbours[b.charts[1]].push_back(b.charts[0]);
+    }
+    std::vector<int> small;
+    for (int c = 0; c < ch.count(); ++c)
+      if (!neighbours[c].empty() && chart_area[c] < max_share * total_area) small.push_back(c);
+    std::stable_sort(small.begin(), small.end(), [&](int a, int b) { return chart_area[a] < chart_area[b]; });
+    bool merged = false;
+    for (int c : small) {
+      for (int n : neighbours[c]) {
+        if (greedy.budget-- <= 0) break;
+        std::vector<int> candidate = labels;
+        for (int f : faces_of_chart[c]) candidate[f] = ch.label[n];
+        int s = violation_score(adjacency, candidate);
+        if (s > score) candidate = greedy.run(std::move(candidate), s, kLookaheadMoves, 0, nullptr);
+        if (s > score || charts(adjacency, candidate).count() >= ch.count()) continue;
+        labels = std::move(candidate);
+        score = s;
+        merged = true;
+        break;
+      }
+      if (merged) break;
+    }
+    if (!merged) break;
   }
   return labels;
 }

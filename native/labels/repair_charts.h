@@ -46,6 +46,15 @@ std::vector<int> repair_charts(const MeshAdjacency& adjacency, const LabelEnergy
 std::vector<int> merge_tiny_charts(const MeshAdjacency& adjacency, const LabelEnergy& energy,
                                    const std::vector<double>& areas, std::vector<int> labels, int max_moves);
 
+// Fewer charts where small ones only add detail: each chart under
+// `max_share` of the area, smallest first, takes a neighbour's label, and a
+// short repair run follows when that broke the polycube conditions; the
+// first such merge that ends with fewer charts and no higher violation score
+// is kept, until none is. areas: per face.
+std::vector<int> simplify_charts(const MeshAdjacency& adjacency, const LabelEnergy& energy,
+                                 const std::vector<double>& areas, std::vector<int> labels, double max_share,
+                                 int max_moves);
+
 // The score above (0 for a valid labeling); labels 0..5, one per face.
 int violation_score(const MeshAdjacency& adjacency, const std::vector<int>& labels);
 

@@ -291,6 +291,52 @@ def test_select_unconverged_faces():
     assert _selected_faces(sphere).tolist() == sorted(unconverged.tolist())
 
 
+def _validation(obj, labels):
+    mesh = arrays(obj)
+    return polycube.polycube_native.validate_labels(mesh.vertices, mesh.face_indices, mesh.face_sizes, labels)
+
+
+def _loose_parts(obj):
+    """Per face, the index of its loose part (faces joined through shared vertices)."""
+    parent = list(range(len(obj.data.vertices)))
+
+    def root(v):
+        while parent[v] != v:
+            parent[v] = parent[parent[v]]
+            v = parent[v]
+        return v
+    for polygon in obj.data.polygons:
+        for v in polygon.vertices[1:]:
+            a, b = root(polygon.vertices[0]), root(v)
+            parent[max(a, b)] = min(a, b)
+    return [root(polygon.vertices[0]) for polygon in obj.data.polygons]
+
+
+def test_suzanne_eyes_are_one_chart_each_and_detail_zero_is_a_head():
+    bpy.ops.object.select_all(action='DESELECT')
+    bpy.ops.mesh.primitive_monkey_add()
+    suzanne = bpy.context.active_object
+    parts = _loose_parts(suzanne)
+    assert len(set(parts)) == 3  # the head and two open eyeballs
+    assert _auto_label(suzanne) == {'FINISHED'}
+    labels = _int_attribute(suzanne, "polycube_label")
+    head = max(set(parts), key=parts.count)
+    for eye in set(parts) - {head}:
+        assert len({labels[f] for f in range(len(parts)) if parts[f] == eye}) == 1
+    default = _validation(suzanne, labels)
+    assert default["valid"] and default["charts"] <= 28, default
+    # The coarse end of Detail: a polycube of a few charts (head and muzzle).
+    assert _auto_label(suzanne, detail=0.0) == {'FINISHED'}
+    coarse = _validation(suzanne, _int_attribute(suzanne, "polycube_label"))
+    assert coarse["valid"] and coarse["charts"] <= 20, coarse
+    # The sidebar's figures follow the new labels.
+    assert load_validation(suzanne, label_summary(suzanne).digest)["charts"] == coarse["charts"]
+    assert deform(suzanne, label_source='STORED') == {'FINISHED'}
+    figures = key_figures(suzanne, suzanne.data.shape_keys.key_blocks[-1].name,
+                          _int_attribute(suzanne, "polycube_label"))
+    assert figures["flipped_faces"] == 0 and figures["normal_deviation_max_deg"] < 0.5, figures
+
+
 def test_operators_are_registered_undoable():
     for name in ("polycube_auto_label", "polycube_validate_labels", "polycube_label_colours",
                  "polycube_select_unconverged"):

@@ -173,6 +173,45 @@ TEST(AutoLabels, OddInputStaysWellDefined) {
 
 std::string cgal_mesh(const std::string& name) { return std::string(POLYCUBE_MESH_DATA) + "/" + name + ".off"; }
 
+// The faces of a UV sphere whose centroid has z above `above`: a cap (open).
+PolygonMesh sphere_above(double above) {
+  const PolygonMesh sphere = test_meshes::uv_sphere(24, 12);
+  PolygonMesh cap;
+  cap.vertices = sphere.vertices;
+  for (int f = 0; f < sphere.faces.count(); ++f) {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    const int n = sphere.faces.size(f);
+    const int* corner = &sphere.faces.indices[sphere.faces.offsets[f]];
+    for (int k = 0; k < n; ++k) c += sphere.vertices.row(corner[k]).transpose() / n;
+    if (c.z() <= above) continue;
+    if (n == 3) cap.faces.add({corner[0], corner[1], corner[2]});
+    else cap.faces.add({corner[0], corner[1], corner[2], corner[3]});
+  }
+  return cap;
+}
+
+int chart_count(const PolygonMesh& mesh, const std::vector<int>& labels) {
+  return validate_labels(mesh, labels).charts;
+}
+
+// An open component that mostly looks one way (a hemisphere, an eyeball) is
+// one flat chart, not an open box of five (docs/design.md section 3.3); a
+// sphere with a small hole is not, and keeps the charts of a closed one.
+TEST(AutoLabels, OpenCapsAreOneChart) {
+  for (const double above : {0.0, 0.5}) {
+    const PolygonMesh cap = sphere_above(above);
+    const std::vector<int> labels = auto_labels(cap);
+    EXPECT_EQ(chart_count(cap, labels), 1) << "cap above z = " << above;
+    EXPECT_EQ(labels[0], 4);  // +Z
+    const DeformResult r = deform(cap, labels);
+    EXPECT_TRUE(r.converged);
+    EXPECT_EQ(r.figures.flipped_faces, 0);
+    EXPECT_EQ(r.figures.collapsed_faces, 0);
+  }
+  const PolygonMesh holed = sphere_above(-0.9);
+  EXPECT_GE(chart_count(holed, auto_labels(holed)), 5);
+}
+
 // Real models: the labels pass the validator's polycube conditions (its list,
 // realisability included, is printed); the deformation runs with them.
 // Figures go to the test output (full runs: tests/benchmark/labels_table.py).
