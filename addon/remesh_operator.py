@@ -53,6 +53,10 @@ class OBJECT_OT_polycube_remesh(bpy.types.Operator):
     target_faces: bpy.props.IntProperty(name="Target Faces", default=5000, min=6, soft_max=200000)
     edge_length: bpy.props.FloatProperty(name="Edge Length", default=0.05, min=1e-6, soft_max=10.0,
                                          subtype='DISTANCE')
+    relax: bpy.props.IntProperty(
+        name="Relax", default=10, min=0, soft_max=50,
+        description="Sweeps evening the vertices out on the surface where the grid carried back is "
+                    "stretched (strips the polycube collapsed); 0: the grid as carried back")
 
     @classmethod
     def poll(cls, context):
@@ -62,6 +66,7 @@ class OBJECT_OT_polycube_remesh(bpy.types.Operator):
         layout = self.layout
         layout.prop(self, "mode")
         layout.prop(self, "target_faces" if self.mode == 'FACES' else "edge_length")
+        layout.prop(self, "relax")
 
     def execute(self, context):
         obj = context.active_object
@@ -71,7 +76,7 @@ class OBJECT_OT_polycube_remesh(bpy.types.Operator):
             # size inside the module, so the count holds on the polycube too).
             h = self.edge_length if self.mode == 'EDGE_LENGTH' else (mesh_area(obj.data) / self.target_faces) ** 0.5
             result = polycube_native.quad_remesh(mesh.vertices, mesh.face_indices, mesh.face_sizes, positions,
-                                                 labels, edge_length=h)
+                                                 labels, edge_length=h, relax_iterations=self.relax)
         except ValueError as error:
             self.report({'ERROR'}, failure(obj.name, "remeshed", error))
             return {'CANCELLED'}

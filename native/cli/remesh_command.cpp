@@ -1,4 +1,4 @@
-// `polycube remesh IN POLYCUBE --edge-length H --output OUT [--labels FILE]`
+// `polycube remesh IN POLYCUBE --edge-length H --output OUT [--labels FILE] [--relax N]`
 #include <cstdio>
 
 #include "cli/commands.h"
@@ -23,6 +23,10 @@ int remesh_command(const std::vector<std::string>& args) {
       ->required()
       ->type_name("H")
       ->check(number_at_least(0.0));
+  app.add_option("--relax", options.relax_iterations,
+                 "sweeps evening the vertices out on IN where the carried grid is stretched (default 10; 0: off)")
+      ->type_name("N")
+      ->check(whole_number_at_least(0));
   app.add_option("--output", output, "the quad mesh, .obj, .off or .ply")->required()->type_name("OUT");
   if (!parse_arguments(app, args)) return 0;
   const UseInput input = read_use_input(paths);

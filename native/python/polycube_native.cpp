@@ -349,12 +349,14 @@ py::dict uv_figures_py(const DoubleArray& vertices, const IntArray& face_indices
 }
 
 py::dict quad_remesh_py(const DoubleArray& vertices, const IntArray& face_indices, const IntArray& face_sizes,
-                        const DoubleArray& polycube, const std::optional<IntArray>& labels, double edge_length) {
+                        const DoubleArray& polycube, const std::optional<IntArray>& labels, double edge_length,
+                        int relax_iterations) {
   const PolygonMesh mesh = to_mesh(vertices, face_indices, face_sizes);
   const Vertices positions = polycube_positions(polycube, mesh);
   const std::vector<int> face_labels = labels ? to_ints(*labels, "labels") : std::vector<int>{};
   QuadRemeshOptions options;
   options.edge_length = edge_length;
+  options.relax_iterations = relax_iterations;
   QuadRemesh remesh;
   {
     py::gil_scoped_release release;
@@ -473,7 +475,9 @@ means of each triangle's singular value ratio and of its area ratio max(r, 1/r);
 "islands", "seam_length"}.)");
   m.def("quad_remesh", &quad_remesh_py, py::arg("vertices"), py::arg("face_indices"), py::arg("face_sizes"),
         py::arg("polycube"), py::arg("labels") = py::none(), py::kw_only(), py::arg("edge_length"),
-        R"(An all-quad mesh of the input from its exact polycube, quads of about edge_length (input units).
+        py::arg("relax_iterations") = QuadRemeshOptions{}.relax_iterations,
+        R"(An all-quad mesh of the input from its exact polycube, quads of about edge_length (input units),
+their vertices evened out on the input by relax_iterations sweeps (0: the grid as carried back).
 
 Returns {"vertices", "face_indices", "face_sizes" (all 4), "source_face" (input face under each
 quad), "label", "vertex_corners" and "vertex_weights" (each vertex as weights of three input face

@@ -10,9 +10,11 @@
 
 #include "labels/axis.h"
 #include "mesh/components.h"
+#include "mesh/mesh_adjacency.h"
 #include "use/corner_of.h"
 #include "use/polycube_surface.h"
 #include "use/quantise_planes.h"
+#include "use/relax_on_surface.h"
 
 namespace polycube {
 namespace {
@@ -119,6 +121,7 @@ QuadRemesh quad_remesh(const PolygonMesh& input, const Vertices& polycube, const
   std::unordered_map<Key, int, KeyHash> square_of;
   std::vector<Key> squares;
   std::vector<int> square_flat;
+  std::vector<double> square_depth;  // the smallest barycentric weight of its centre: larger is further inside
   std::unordered_map<Key, Placement, KeyHash> placement;
   const double inside = -1e-9;
   for (size_t i = 0; i < flats.size(); ++i) {
@@ -143,11 +146,13 @@ QuadRemesh quad_remesh(const PolygonMesh& input, const Vertices& polycube, const
     for (long gi = std::lround(std::ceil(lo[0] - 0.5)); gi + 0.5 <= hi[0]; ++gi)
       for (long gj = std::lround(std::ceil(lo[1] - 0.5)); gj + 0.5 <= hi[1]; ++gj) {
         const Eigen::Vector2d p(grid[b].from_grid(gi + 0.5), grid[c].from_grid(gj + 0.5));
-        if (barycentric(t, p).minCoeff() < inside) continue;
+        const double depth = barycentric(t, p).minCoeff();
+        if (depth < inside) continue;
         const Key k = key(t.label, gi, gj);
         if (square_of.emplace(k, static_cast<int>(squares.size())).second) {
           squares.push_back(k);
           square_flat.push_back(static_cast<int>(i));
+          square_depth.push_back(depth);
         }
       }
     // Grid vertices.
@@ -163,37 +168,75 @@ QuadRemesh quad_remesh(const PolygonMesh& input, const Vertices& polycube, const
   if (squares.empty()) throw Error("no grid square fits on the polycube: choose a smaller edge length");
 
   // Quads: the square's corners counter-clockwise seen from its label's side.
+  std::vector<std::array<Key, 4>> square_corners(squares.size());
+  for (size_t s = 0; s < squares.size(); ++s) {
+    const Key& k = squares[s];
+    const int label = static_cast<int>(k[0]), a = label / 2, b = (a + 1) % 3, c = (a + 2) % 3;
+    static constexpr int kCorner[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    for (int q = 0; q < 4; ++q) {
+      Key corner{-1, k[1], k[2], k[3], k[4]};
+      corner[2 + b] += kCorner[q][0];
+      corner[2 + c] += kCorner[q][1];
+      square_corners[s][q] = corner;
+    }
+    if (label % 2 == 1) std::swap(square_corners[s][1], square_corners[s][3]);
+  }
+
+  // Manifold: every edge in at most two quads, walked once each way. Where the
+  // input is open, a boundary running slantwise across the grid can leave two
+  // squares on one side of a grid edge (each centre on the surface, their edge
+  // not): the one whose centre lies deeper inside its triangle stays. Elsewhere
+  // two such squares mean the polycube touches itself.
+  const MeshAdjacency input_adjacency = mesh_adjacency(input.faces, static_cast<int>(input.vertices.rows()));
+  bool input_open = false;
+  for (int e = 0; e < input_adjacency.edge_count(); ++e) input_open |= input_adjacency.faces_of_edge(e) == 1;
+  std::vector<char> dropped(squares.size(), 0);
+  for (;;) {
+    std::map<std::array<Key, 2>, std::vector<int>> users;  // directed edge -> squares walking it
+    for (size_t s = 0; s < squares.size(); ++s)
+      if (!dropped[s])
+        for (int q = 0; q < 4; ++q) users[{square_corners[s][q], square_corners[s][(q + 1) % 4]}].push_back(int(s));
+    bool changed = false;
+    for (const auto& [edge, walkers] : users) {
+      if (walkers.size() < 2) continue;
+      if (!input_open) {
+        const Key& k = edge[0];
+        throw Error("the polycube touches itself near grid point (" + std::to_string(k[2]) + ", " +
+                    std::to_string(k[3]) + ", " + std::to_string(k[4]) +
+                    "): its quad mesh would not be manifold");
+      }
+      const int keep = *std::max_element(walkers.begin(), walkers.end(),
+                                         [&](int x, int y) { return square_depth[x] < square_depth[y]; });
+      for (int s : walkers)
+        if (s != keep) dropped[s] = changed = true;
+    }
+    if (!changed) break;
+  }
+
   std::unordered_map<Key, int, KeyHash> vertex_of;
   std::vector<Key> vertex_keys;
   std::vector<int> vertex_square;  // a square using the vertex, for the fallback below
   out.mesh.faces.indices.reserve(4 * squares.size());
   for (size_t s = 0; s < squares.size(); ++s) {
-    const Key& k = squares[s];
-    const int label = static_cast<int>(k[0]), a = label / 2, b = (a + 1) % 3, c = (a + 2) % 3;
-    static constexpr int kCorner[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    if (dropped[s]) continue;
     std::array<int, 4> quad;
     for (int q = 0; q < 4; ++q) {
-      Key corner{-1, k[1], k[2], k[3], k[4]};
-      corner[2 + b] += kCorner[q][0];
-      corner[2 + c] += kCorner[q][1];
-      auto [it, added] = vertex_of.emplace(corner, static_cast<int>(vertex_keys.size()));
+      auto [it, added] = vertex_of.emplace(square_corners[s][q], static_cast<int>(vertex_keys.size()));
       if (added) {
-        vertex_keys.push_back(corner);
+        vertex_keys.push_back(square_corners[s][q]);
         vertex_square.push_back(static_cast<int>(s));
       }
       quad[q] = it->second;
     }
-    if (label % 2 == 1) std::swap(quad[1], quad[3]);
     out.mesh.faces.add({quad[0], quad[1], quad[2], quad[3]});
     out.source_face.push_back(surface.triangulation.face_of_triangle[flats[square_flat[s]].triangle]);
-    out.label.push_back(label);
+    out.label.push_back(static_cast<int>(squares[s][0]));
   }
 
   // Every grid vertex back onto the input: the same barycentric coordinates on the input triangle.
-  out.mesh.vertices.resize(static_cast<Eigen::Index>(vertex_keys.size()), 3);
-  out.vertex_corners.resize(out.mesh.vertices.rows(), 3);
-  out.vertex_weights.resize(out.mesh.vertices.rows(), 3);
-  for (size_t v = 0; v < vertex_keys.size(); ++v) {
+  const int vertex_count = static_cast<int>(vertex_keys.size());
+  std::vector<SurfacePoint> points(vertex_count);
+  for (int v = 0; v < vertex_count; ++v) {
     auto found = placement.find(vertex_keys[v]);
     Placement p;
     if (found != placement.end()) {
@@ -206,39 +249,72 @@ QuadRemesh quad_remesh(const PolygonMesh& input, const Vertices& polycube, const
       p.weights = barycentric(t, {grid[b].from_grid(static_cast<double>(vertex_keys[v][2 + b])),
                                   grid[c].from_grid(static_cast<double>(vertex_keys[v][2 + c]))});
     }
-    const Eigen::Vector3d w = p.weights.cwiseMax(0.0) / p.weights.cwiseMax(0.0).sum();
-    const int t = flats[p.flat].triangle;
-    const int face = surface.triangulation.face_of_triangle[t];
-    for (int k = 0; k < 3; ++k) out.vertex_corners(v, k) = corner_of(input.faces, face, triangles(t, k));
-    out.vertex_weights.row(v) = w.transpose();
-    out.mesh.vertices.row(v) = w[0] * input.vertices.row(triangles(t, 0)) +
-                               w[1] * input.vertices.row(triangles(t, 1)) +
-                               w[2] * input.vertices.row(triangles(t, 2));
+    points[v] = {flats[p.flat].triangle, p.weights.cwiseMax(0.0) / p.weights.cwiseMax(0.0).sum()};
   }
 
-  // Manifold: every edge in at most two quads, walked once each way.
-  std::map<std::array<int, 2>, std::array<int, 2>> edge_use;  // (low, high) -> uses forward, backward
+  // Edges, valences, open edges, and the polycube's edges (two quads of different labels).
+  std::map<std::array<int, 2>, std::array<int, 2>> edge_quads;  // (low, high) -> its quads (-1: none)
   for (int f = 0; f < out.mesh.faces.count(); ++f)
     for (int q = 0; q < 4; ++q) {
       const int u = out.mesh.faces.indices[4 * f + q], w = out.mesh.faces.indices[4 * f + (q + 1) % 4];
-      ++edge_use[{std::min(u, w), std::max(u, w)}][u < w ? 0 : 1];
+      auto [it, added] = edge_quads.try_emplace({std::min(u, w), std::max(u, w)}, std::array<int, 2>{f, -1});
+      if (!added) it->second[1] = f;
     }
-  std::vector<int> valence(vertex_keys.size(), 0), open(vertex_keys.size(), 0);
-  for (const auto& [edge, use] : edge_use) {
-    if (use[0] > 1 || use[1] > 1) {
-      const Key& k = vertex_keys[edge[0]];
-      throw Error("the polycube touches itself near grid point (" + std::to_string(k[2]) + ", " +
-                  std::to_string(k[3]) + ", " + std::to_string(k[4]) +
-                  "): its quad mesh would not be manifold");
-    }
+  std::vector<int> valence(vertex_count, 0), open(vertex_count, 0);
+  std::vector<std::vector<int>> all_neighbours(vertex_count), crease_neighbours(vertex_count);
+  for (const auto& [edge, quads] : edge_quads) {
     for (int v : edge) ++valence[v];
-    if (use[0] + use[1] == 1) {
+    all_neighbours[edge[0]].push_back(edge[1]);
+    all_neighbours[edge[1]].push_back(edge[0]);
+    if (quads[1] < 0) {
       ++out.open_edges;
       for (int v : edge) open[v] = 1;
+    } else if (out.label[quads[0]] != out.label[quads[1]]) {
+      crease_neighbours[edge[0]].push_back(edge[1]);
+      crease_neighbours[edge[1]].push_back(edge[0]);
     }
   }
-  for (size_t v = 0; v < valence.size(); ++v)
+  for (int v = 0; v < vertex_count; ++v)
     if (valence[v] != (open[v] ? 3 : 4)) ++out.irregular_vertices;
+
+  // Even the spacing on the input (relax_on_surface): a vertex inside a face of
+  // the polycube moves among its four neighbours, one on a polycube edge along
+  // that edge (the input's feature it follows stays sharp); polycube corners,
+  // irregular vertices and the input's boundary stay.
+  std::vector<std::vector<int>> neighbours(vertex_count);
+  for (int v = 0; v < vertex_count; ++v) {
+    if (open[v] || valence[v] != 4) continue;
+    if (crease_neighbours[v].empty())
+      neighbours[v] = all_neighbours[v];
+    else if (crease_neighbours[v].size() == 2)
+      neighbours[v] = crease_neighbours[v];
+  }
+  // Only where the carried grid is stretched (an edge over 1.6 h, and two rings
+  // around it): quads bridging a collapsed strip, a sliver's few points far
+  // apart. Elsewhere the grid follows the input's own triangles, its features too.
+  const Vertices carried = relax_on_surface(input.vertices, triangles, neighbours, 0, points);
+  std::vector<char> moves(vertex_count, 0);
+  for (const auto& [edge, quads] : edge_quads)
+    if ((carried.row(edge[0]) - carried.row(edge[1])).norm() > 1.6 * options.edge_length)
+      moves[edge[0]] = moves[edge[1]] = 1;
+  for (int ring = 0; ring < 2; ++ring) {
+    std::vector<char> grown = moves;
+    for (const auto& [edge, quads] : edge_quads)
+      if (moves[edge[0]] || moves[edge[1]]) grown[edge[0]] = grown[edge[1]] = 1;
+    moves.swap(grown);
+  }
+  for (int v = 0; v < vertex_count; ++v)
+    if (!moves[v]) neighbours[v].clear();
+  out.mesh.vertices = relax_on_surface(input.vertices, triangles, neighbours, options.relax_iterations, points);
+
+  out.vertex_corners.resize(vertex_count, 3);
+  out.vertex_weights.resize(vertex_count, 3);
+  for (int v = 0; v < vertex_count; ++v) {
+    const int t = points[v].triangle;
+    const int face = surface.triangulation.face_of_triangle[t];
+    for (int k = 0; k < 3; ++k) out.vertex_corners(v, k) = corner_of(input.faces, face, triangles(t, k));
+    out.vertex_weights.row(v) = points[v].weights.transpose();
+  }
   return out;
 }
 

@@ -18,6 +18,7 @@ namespace polycube {
 
 struct QuadRemeshOptions {
   double edge_length = 0.0;  // target edge length h on the input (its units); > 0
+  int relax_iterations = 10;  // sweeps of relax_on_surface evening the spacing on the input; 0: the grid as carried back
 };
 
 struct QuadRemesh {

@@ -129,6 +129,22 @@ def test_remesh_target_edge_length():
     assert 0.025 < np.median(lengths) < 0.06, np.median(lengths)
 
 
+def test_remesh_relax_keeps_the_quads_and_moves_vertices_on_the_surface():
+    fandisk = _deformed_fandisk()
+    results = []
+    for relax in (0, 10):
+        select_only(fandisk)
+        assert bpy.ops.object.polycube_remesh(mode='FACES', target_faces=3000, relax=relax) == {'FINISHED'}
+        quads = bpy.context.active_object
+        loops = np.empty(len(quads.data.loops), dtype=np.int32)
+        quads.data.loops.foreach_get("vertex_index", loops)
+        results.append((vertices(quads), loops))
+    (carried, loops0), (relaxed, loops1) = results
+    assert np.array_equal(loops0, loops1)
+    moved = np.linalg.norm(relaxed - carried, axis=1) > 1e-6
+    assert 0 < moved.sum() < len(carried), moved.sum()
+
+
 def test_clear_refusals():
     sphere = labelled_sphere()
     select_only(sphere)

@@ -18,6 +18,7 @@
 #include "use/polycube_uv.h"
 #include "use/quad_remesh.h"
 #include "use/quantise_planes.h"
+#include "use/relax_on_surface.h"
 #include "use/uv_figures.h"
 
 namespace {
@@ -261,6 +262,116 @@ TEST(QuadRemesh, RealModelsGiveClosedManifoldQuadsOnTheSurface) {
     EXPECT_GE(regular, 0.95);
     std::printf("  %-8s quads=%d irregular=%d regular=%.3f\n", name, r.mesh.faces.count(), r.irregular_vertices, regular);
   }
+}
+
+// The largest distance from an input vertex to the quads (each split in two triangles).
+double input_to_quads(const PolygonMesh& input, const QuadRemesh& r) {
+  const auto& q = r.mesh.faces.indices;
+  double worst = 0.0;
+  for (Eigen::Index v = 0; v < input.vertices.rows(); ++v) {
+    const Eigen::Vector3d p = input.vertices.row(v);
+    double nearest = INFINITY;
+    for (int f = 0; f < r.mesh.faces.count(); ++f) {
+      auto corner = [&](int k) -> Eigen::Vector3d { return r.mesh.vertices.row(q[4 * f + k]); };
+      nearest = std::min({nearest, point_triangle_distance(p, corner(0), corner(1), corner(2)),
+                          point_triangle_distance(p, corner(0), corner(2), corner(3))});
+    }
+    worst = std::max(worst, nearest);
+  }
+  return worst;
+}
+
+TEST(RelaxOnSurface, EvensAChainOutOnAPlaneAndKeepsItThere) {
+  Vertices plane(4, 3);
+  plane << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0;
+  Triangles triangles(2, 3);
+  triangles << 0, 1, 2, 0, 2, 3;
+  const std::vector<double> x = {0.1, 0.15, 0.2, 0.25, 0.3, 0.9};  // bunched at one end
+  std::vector<SurfacePoint> points;
+  std::vector<std::vector<int>> neighbours(x.size());
+  for (size_t i = 0; i < x.size(); ++i) {
+    // (x, 0.4) in triangle 0 (corners (0,0), (1,0), (1,1)): weights 1 - x, x - 0.4, 0.4.
+    points.push_back({0, Eigen::Vector3d(1.0 - x[i], x[i] - 0.4, 0.4)});
+    if (i > 0 && i + 1 < x.size()) neighbours[i] = {static_cast<int>(i) - 1, static_cast<int>(i) + 1};
+  }
+  const Vertices relaxed = relax_on_surface(plane, triangles, neighbours, 200, points);
+  for (size_t i = 0; i < x.size(); ++i) {
+    EXPECT_NEAR(relaxed(i, 0), 0.1 + 0.16 * static_cast<double>(i), 1e-3) << i;  // evenly from 0.1 to 0.9
+    EXPECT_NEAR(relaxed(i, 1), 0.4, 1e-9) << i;
+    EXPECT_EQ(relaxed(i, 2), 0.0) << i;
+    EXPECT_LT((surface_position(plane, triangles, points[i]) - relaxed.row(i).transpose()).norm(), 1e-12);
+  }
+}
+
+TEST(RelaxOnSurface, PointsBesideACreaseStay) {
+  // Two unit squares folded at a right angle along x = 1: every triangle touches the crease.
+  Vertices folded(6, 3);
+  folded << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 1, 0, 1, 1, 1, 1;
+  Triangles triangles(4, 3);
+  triangles << 0, 1, 2, 0, 2, 3, 1, 4, 5, 1, 5, 2;
+  std::vector<SurfacePoint> points = {{1, Eigen::Vector3d(0.2, 0.3, 0.5)}, {2, Eigen::Vector3d(0.2, 0.4, 0.4)}};
+  const Vertices before = relax_on_surface(folded, triangles, {{1}, {0}}, 0, points);
+  const Vertices after = relax_on_surface(folded, triangles, {{1}, {0}}, 10, points);
+  EXPECT_EQ((after - before).norm(), 0.0);
+  // Flattened, the same two points move toward each other.
+  Vertices flat = folded;
+  flat.row(4) << 2, 0, 0;
+  flat.row(5) << 2, 1, 0;
+  const Vertices flat_before = relax_on_surface(flat, triangles, {{1}, {0}}, 0, points);
+  const Vertices flat_after = relax_on_surface(flat, triangles, {{1}, {0}}, 10, points);
+  EXPECT_LT((flat_after.row(0) - flat_after.row(1)).norm(), 0.1 * (flat_before.row(0) - flat_before.row(1)).norm());
+}
+
+// The longest quad edge.
+double longest_edge(const QuadRemesh& r) {
+  double longest = 0.0;
+  for (size_t k = 0; k < r.mesh.faces.indices.size(); ++k) {
+    const int u = r.mesh.faces.indices[k], w = r.mesh.faces.indices[k % 4 == 3 ? k - 3 : k + 1];
+    longest = std::max(longest, (r.mesh.vertices.row(u) - r.mesh.vertices.row(w)).norm());
+  }
+  return longest;
+}
+
+TEST(QuadRemesh, RelaxingShortensTheStretchedQuadsOnTheSurface) {
+  // Where bone's polycube squeezes strips of it toward its edges the carried grid bridges them
+  // with long quads; relaxed on the surface, the same quads come down onto them.
+  const std::string bone = std::string(POLYCUBE_SHARED_DATA) + "/bone/surface.obj";
+  if (!exists(bone)) GTEST_SKIP() << "run `make data`";
+  const Deformed d = deformed(read_mesh(bone), true);
+  const double diagonal = (d.mesh.vertices.colwise().maxCoeff() - d.mesh.vertices.colwise().minCoeff()).norm();
+  QuadRemeshOptions options;
+  options.edge_length = 0.02 * diagonal;
+  options.relax_iterations = 0;
+  const QuadRemesh carried = quad_remesh(d.mesh, d.polycube, d.labels, options);
+  options.relax_iterations = QuadRemeshOptions{}.relax_iterations;
+  const QuadRemesh relaxed = quad_remesh(d.mesh, d.polycube, d.labels, options);
+  expect_good_quad_mesh(relaxed, d.mesh);
+  EXPECT_EQ(relaxed.mesh.faces.indices, carried.mesh.faces.indices);  // the same quads
+  EXPECT_EQ(relaxed.irregular_vertices, carried.irregular_vertices);
+  const double before = input_to_quads(d.mesh, carried) / diagonal, after = input_to_quads(d.mesh, relaxed) / diagonal;
+  std::printf("  bone: longest edge %.2f h carried, %.2f h relaxed; input to quads %.5f, %.5f of the diagonal\n",
+              longest_edge(carried) / options.edge_length, longest_edge(relaxed) / options.edge_length, before, after);
+  EXPECT_LT(longest_edge(relaxed), 0.85 * longest_edge(carried));
+  EXPECT_LE(after, before);
+}
+
+TEST(QuadRemesh, AnOpenBoundaryAcrossTheGridStaysManifold) {
+  // mech-holes-shark is open: boundaries run slantwise over its polycube's faces, and two
+  // squares could meet on one side of a grid edge there; the one deeper inside stays.
+  const std::string shark = std::string(POLYCUBE_MESH_DATA) + "/mech-holes-shark.off";
+  if (!exists(shark)) GTEST_SKIP() << "run `make data`";
+  const Deformed d = deformed(read_mesh(shark), true);
+  QuadRemeshOptions options;
+  options.edge_length = 0.0366;
+  const QuadRemesh r = quad_remesh(d.mesh, d.polycube, d.labels, options);
+  std::map<std::pair<int, int>, int> directed;
+  for (int f = 0; f < r.mesh.faces.count(); ++f) {
+    ASSERT_EQ(r.mesh.faces.size(f), 4);
+    for (int k = 0; k < 4; ++k) ++directed[{r.mesh.faces.indices[4 * f + k], r.mesh.faces.indices[4 * f + (k + 1) % 4]}];
+  }
+  for (const auto& [edge, uses] : directed) ASSERT_EQ(uses, 1);
+  EXPECT_GT(r.open_edges, 0);
+  EXPECT_GT(r.mesh.faces.count(), 2000);
 }
 
 TEST(QuadRemesh, ClearErrors) {

@@ -122,6 +122,29 @@ def test_quad_remesh_from_python_matches_the_program(native, fandisk):
     assert all((b, a) in directed for a, b in directed)  # closed
 
 
+def test_remesh_relax_moves_vertices_along_the_surface_only(program, native, fandisk):
+    """--relax 0 keeps the grid as carried back; the default evens it out where it is stretched:
+    the same quads, some vertices moved, the longest edge shorter."""
+    source, polycube, folder = fandisk
+    meshes = []
+    for relax in ([], ["--relax", 0]):
+        out = folder / f"relax{len(relax)}.obj"
+        result = run(program, "remesh", source, polycube, "--edge-length", 0.02, "--output", out, *relax)
+        assert result.returncode == 0, result.stderr
+        meshes.append(native.read_mesh(str(out)))
+    (relaxed, indices, _), (carried, carried_indices, _) = meshes
+    assert np.array_equal(indices, carried_indices)
+    moved = np.linalg.norm(relaxed - carried, axis=1) > 1e-9
+    assert 0 < moved.sum() < len(relaxed)
+
+    def longest(v):
+        q = v[indices.reshape(-1, 4)]
+        return np.linalg.norm(q - np.roll(q, -1, 1), axis=2).max()
+    assert longest(relaxed) < longest(carried)
+    bad = run(program, "remesh", source, polycube, "--edge-length", 0.02, "--output", folder / "x.obj", "--relax", -1)
+    assert bad.returncode != 0 and "--relax" in bad.stderr
+
+
 @pytest.mark.parametrize("case, message", [
     ("too_large", "larger than the model"),
     ("flipped", "flipped face"),
