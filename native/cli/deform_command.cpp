@@ -60,11 +60,16 @@ int deform_command(const std::vector<std::string>& args) {
   bool plain = false;
   add_plain_labels_option(app, plain);
   app.add_option("--report", report_path, "the figures and timings as JSON")->type_name("REPORT.json");
+  bool keep_collapsed = false;
+  app.add_flag("--no-relabel-collapsed", keep_collapsed,
+               "robust: keep an exact result's collapsed faces; by default the run is repeated once with\n"
+               "them relabelled, and kept when less collapses (relabelled_faces lists them)");
   app.add_flag("--time-references", options.time_references,
                "also time one back-substitution and one measurement of this mesh\n"
                "(reference_seconds: what `make bench` states an iteration's cost against)");
   if (!parse_arguments(app, args)) return 0;
   options.variant = parse_variant(variant);
+  options.relabel_collapsed = !keep_collapsed;
 
   const PolygonMesh mesh = read_mesh(input);
   if (app.count("--start")) {

@@ -80,6 +80,10 @@ struct DeformOptions {
   // measurement of the result (DeformResult::reference_seconds): the units
   // `make bench` states the cost of an iteration in.
   bool time_references = false;
+  // Robust variant: when the result is exact but collapsed faces, run once
+  // more from the input with those faces relabelled (relabel_collapsed_faces.h)
+  // and keep the run that collapses less.
+  bool relabel_collapsed = true;
 };
 
 struct PhaseSeconds {
@@ -128,6 +132,10 @@ struct DeformResult {
   // not reach its axis without folding (relabel_stalled_faces.h); `labels` holds the
   // new ones and the figures are measured against them.
   std::vector<int> relabelled_faces;
+  // Iterations of the robust variant's second run with collapsed faces
+  // relabelled (DeformOptions::relabel_collapsed), when it was kept; it
+  // counts as one iteration in `iterations`, the last. 0 otherwise.
+  int second_run_iterations = 0;
   // The `robust` variant's iteration at which every chart became exactly
   // flat (flatten_charts.h), 0 when it did not; the triangles it collapsed
   // on purpose there to undo folds.

@@ -1,13 +1,92 @@
 // deform() at any scale: the model moved into the unit box (unit_box.h),
 // deformed there, and the positions (of the result and of every iteration
-// the callback sees) moved back. The figures are scale-free already.
+// the callback sees) moved back. The figures are scale-free already. The
+// robust variant's second run with collapsed faces relabelled is here too:
+// it wraps whole runs.
 #include <algorithm>
 
 #include "deform/deform.h"
+#include "deform/quality.h"
+#include "deform/relabel_collapsed_faces.h"
+#include "labels/axis.h"
+#include "labels/nearest_labels.h"
+#include "labels/repair_charts.h"
+#include "mesh/mesh_adjacency.h"
+#include "mesh/triangulate.h"
 #include "mesh/check_input.h"
 #include "mesh/unit_box.h"
 
 namespace polycube {
+namespace {
+
+// Stage 8 (docs/design.md section 2.6): an exact polycube that collapsed
+// faces is run once more from the input, its collapsed faces relabelled
+// (relabel_collapsed_faces.h), and kept when that run is exact, fold-free
+// and collapses less area, with no more polycube conditions broken. The
+// callback sees its result once, as the iteration after the first run's
+// last (DeformResult::second_run_iterations says how many it took), and the
+// faces relabelled join `relabelled_faces`.
+void rerun_collapsed(const PolygonMesh& mesh, const std::vector<int>& labels, const DeformOptions& options,
+                     const IterationCallback& callback, DeformResult& result) {
+  if (result.stopped || !result.converged || result.figures.collapsed_faces == 0 ||
+      result.figures.flipped_faces > 0)
+    return;
+  const Triangulation triangulation = triangulate(mesh.vertices, mesh.faces);
+  std::vector<int> triangle_labels(triangulation.face_of_triangle.size());
+  for (size_t t = 0; t < triangle_labels.size(); ++t) triangle_labels[t] = result.labels[triangulation.face_of_triangle[t]];
+  const FaceStates states = QualityMeasure(mesh.vertices, triangulation.triangles, triangle_labels).face_states(result.positions);
+  std::vector<char> collapsed(mesh.faces.count(), 0);
+  for (size_t t = 0; t < states.collapsed.size(); ++t)
+    if (states.collapsed[t]) collapsed[triangulation.face_of_triangle[t]] = 1;
+  const MeshAdjacency adjacency = mesh_adjacency(mesh.faces, static_cast<int>(mesh.vertices.rows()));
+  std::vector<int> moved = result.labels;
+  const std::vector<int> changed = relabel_collapsed_faces(face_neighbours(adjacency, mesh.faces.count()), collapsed, moved);
+  if (changed.empty() || violation_score(adjacency, moved) > violation_score(adjacency, result.labels)) return;
+
+  // Silent: its iterations start again from the input, and a caller that
+  // keeps every iteration (shape keys) would get a run it may not keep.
+  const int offset = result.iterations;
+  DeformResult again = deform_in_unit_box(mesh, moved, options, {});
+  const bool better = again.converged && again.figures.flipped_faces == 0 &&
+                      again.figures.folded_edges <= again.input_folded_edges &&
+                      again.figures.collapsed_area < result.figures.collapsed_area;
+  again.seconds.total += result.seconds.total;
+  if (!better) {
+    result.seconds.total = again.seconds.total;
+    return;
+  }
+  std::vector<int> relabelled = result.relabelled_faces;
+  relabelled.insert(relabelled.end(), changed.begin(), changed.end());
+  relabelled.insert(relabelled.end(), again.relabelled_faces.begin(), again.relabelled_faces.end());
+  std::sort(relabelled.begin(), relabelled.end());
+  relabelled.erase(std::unique(relabelled.begin(), relabelled.end()), relabelled.end());
+  again.relabelled_faces = std::move(relabelled);
+  // Against the labels the caller gave, not the second run's.
+  std::vector<int> given = labels;
+  const std::vector<int> nearest = nearest_labels(mesh);
+  for (size_t f = 0; f < given.size(); ++f)
+    if (given[f] == kUnlabelled) given[f] = nearest[f];
+  for (size_t t = 0; t < triangle_labels.size(); ++t) triangle_labels[t] = given[triangulation.face_of_triangle[t]];
+  again.given_labels_figures =
+      QualityMeasure(mesh.vertices, triangulation.triangles, triangle_labels).measure(again.positions);
+  // To the caller the second run is one more iteration (below).
+  again.second_run_iterations = again.iterations;
+  again.iterations = again.kept_iteration = offset + 1;
+  if (again.flat_iteration > 0) again.flat_iteration = offset + 1;
+  again.factorizations += result.factorizations;
+  again.unlabelled_faces = result.unlabelled_faces;  // the second run was given them filled
+  std::vector<DeformResult::FlattenAttempt> attempts = result.flatten_attempts;
+  for (DeformResult::FlattenAttempt attempt : again.flatten_attempts) {
+    attempt.iteration = offset + 1;
+    attempts.push_back(attempt);
+  }
+  again.flatten_attempts = std::move(attempts);
+  result = std::move(again);
+  // The kept second run is the last iteration the caller sees.
+  if (callback) callback(result.iterations, result.positions, result.figures);
+}
+
+}  // namespace
 
 DeformResult deform(const PolygonMesh& input, const std::vector<int>& labels, const DeformOptions& options,
                     const IterationCallback& callback) {
@@ -22,6 +101,7 @@ DeformResult deform(const PolygonMesh& input, const std::vector<int>& labels, co
   DeformOptions unit_options = options;
   if (options.start.size() > 0) unit_options.start = unit.box().to_unit(options.start);
   DeformResult result = deform_in_unit_box(mesh, labels, unit_options, unit_callback);
+  if (options.variant == Variant::kRobust && options.relabel_collapsed) rerun_collapsed(mesh, labels, unit_options, unit_callback, result);
   result.positions = unit.box().from_unit(result.positions, mesh.vertices, input.vertices);
   // The report never contradicts itself: a run that leaves faces above the
   // tolerance or folded is not converged, whatever the figures' rounding said.

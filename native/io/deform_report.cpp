@@ -41,6 +41,7 @@ Json deform_report(const PolygonMesh& mesh, const DeformResult& r, const DeformO
                {"stopped", r.stopped},
                {"failure", r.failure},
                {"flat_iteration", r.flat_iteration},
+               {"second_run_iterations", r.second_run_iterations},
                {"collapsed_on_purpose", r.collapsed_on_purpose},
                {"unlabelled_faces", r.unlabelled_faces},
                {"solver", r.solver},

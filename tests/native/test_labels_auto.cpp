@@ -9,6 +9,7 @@
 #include "labeller/auto_labels.h"
 #include "deform/deform.h"
 #include "deform/quality.h"
+#include "deform/relabel_collapsed_faces.h"
 #include "labels/nearest_labels.h"
 #include "labels/orientation.h"
 #include "mesh/triangulate.h"
@@ -354,3 +355,49 @@ TEST(NeverWorse, ElephantKeepsNoMoreFoldsThanItsInput) {
     }
   }
 }
+
+// Collapsed faces take the label most of their uncollapsed neighbours of
+// another chart have, never their opposite; a face with none waits a sweep.
+TEST(RelabelCollapsedFaces, TakesTheNeighboursLabelNeverTheOpposite) {
+  // A chain of faces 0 - 1 - 2 - 3 - 4 - 5.
+  const std::vector<std::vector<int>> chain{{1}, {0, 2}, {1, 3}, {2, 4}, {3, 5}, {4}};
+  std::vector<int> labels{0, 0, 2, 2, 1, 0};
+  const std::vector<char> collapsed{0, 1, 0, 0, 1, 0};
+  EXPECT_EQ(relabel_collapsed_faces(chain, collapsed, labels), (std::vector<int>{1, 4}));
+  // Face 1 (+X) takes +Y from face 2; face 4 (-X) takes +Y from face 3, not +X from face 5.
+  EXPECT_EQ(labels, (std::vector<int>{0, 2, 2, 2, 2, 0}));
+  // Two collapsed faces in a row: the inner one follows the outer one a sweep later.
+  std::vector<int> row{4, 4, 4, 2};
+  EXPECT_EQ(relabel_collapsed_faces({{1}, {0, 2}, {1, 3}, {2}}, {0, 1, 1, 0}, row), (std::vector<int>{1, 2}));
+  EXPECT_EQ(row, (std::vector<int>{4, 2, 2, 2}));
+}
+
+// The robust variant's second run (docs/design.md section 2.6, stage 8): the
+// eight's automatic labels leave 6 faces collapsed on its hole's rim; with
+// them relabelled nothing collapses, and the report says which faces changed
+// and measures against the given labels too.
+TEST(SecondRun, RelabelledCollapsedFacesFindRoomOnTheEight) {
+  const std::string path = cgal_mesh("eight");
+  if (!exists(path)) GTEST_SKIP() << path << " is missing: run `make data` (Debian libcgal-demo)";
+  const PolygonMesh mesh = read_mesh(path);
+  const std::vector<int> labels = auto_labels(mesh);
+  DeformOptions once;
+  once.relabel_collapsed = false;
+  const DeformResult first = deform(mesh, labels, once), second = deform(mesh, labels);
+  print_figures("eight, one run", first);
+  print_figures("eight, second run", second);
+  ASSERT_TRUE(first.converged);
+  EXPECT_GT(first.figures.collapsed_faces, 0);
+  EXPECT_TRUE(first.relabelled_faces.empty());
+  EXPECT_TRUE(second.converged);
+  EXPECT_EQ(second.figures.flipped_faces, 0);
+  EXPECT_LE(second.figures.folded_edges, second.input_folded_edges);
+  EXPECT_LT(second.figures.collapsed_area, 0.5 * first.figures.collapsed_area);
+  EXPECT_LT(second.figures.edge_error, 0.15);
+  EXPECT_GT(second.iterations, first.iterations);
+  EXPECT_FALSE(second.relabelled_faces.empty());
+  // Relabelled faces stand on another axis than the one they were given.
+  EXPECT_GT(second.given_labels_figures.normal_deviation_max_deg, 45.0);
+  EXPECT_LT(second.figures.normal_deviation_max_deg, 0.5);
+}
+
