@@ -37,6 +37,12 @@ constexpr double kSettled = 0.01;
 // round's, the barrier is still working (elephant: 4.4% of the area
 // collapsed when put on a line after the second round, 2.7% with this).
 constexpr double kStalled = 0.9;
+// A local round (header) moves the unknowns this many rings of triangles
+// around the triangles without room, through unknowns shared by at most
+// this many vertices: not the chart planes, which the global rounds have
+// placed already.
+constexpr int kLocalRings = 3;
+constexpr double kLocalMaxUses = 4;
 
 struct Triangle {
   std::array<std::array<int, 2>, 3> unknown;  // per corner: the unknowns of its two in-plane coordinates
@@ -71,7 +77,7 @@ double determinant(const Triangle& t, const Eigen::VectorXd& y, Eigen::Matrix2d*
 }  // namespace
 
 UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat, const Triangles& triangles,
-                                     const std::vector<int>& triangle_labels, int max_rounds) {
+                                     const std::vector<int>& triangle_labels, int max_rounds, double local_share) {
   const int n = static_cast<int>(input.rows());
   const Eigen::Index count = triangles.rows();
   UntangledCharts result;
@@ -163,6 +169,7 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
   std::vector<int> source;          // active -> all
   std::vector<int> slot(unknowns);  // unknown -> entry of the minimised vector
   Eigen::VectorXd y;
+  Eigen::VectorXd slot_users;  // vertices using each slot
   auto rebuild = [&]() {
     std::vector<int> root_slot(unknowns, -1);
     int slots = 0;
@@ -176,6 +183,7 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
     Eigen::VectorXd sum = Eigen::VectorXd::Zero(slots), users = Eigen::VectorXd::Zero(slots);
     for (int u = 0; u < unknowns; ++u) sum[slot[u]] += uses[u] * x[u], users[slot[u]] += uses[u];
     y = sum.cwiseQuotient(users.cwiseMax(1.0));
+    slot_users = users;
     active.clear();
     source.clear();
     for (size_t i = 0; i < all.size(); ++i) {
@@ -193,8 +201,8 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
   double eps = kFirstEps;
   // Per thread: its triangles' share of the gradient, summed afterwards.
   std::vector<Eigen::VectorXd> partial(std::max(1, parallel_threads(static_cast<long>(count))));
-  auto energy = [&](const Eigen::VectorXd& at, Eigen::VectorXd& gradient) {
-    const long size = static_cast<long>(active.size());
+  auto energy_of = [&](const std::vector<Triangle>& list, const Eigen::VectorXd& at, Eigen::VectorXd& gradient) {
+    const long size = static_cast<long>(list.size());
     const int threads = parallel_threads(size);
     double total = 0.0;
 #pragma omp parallel for num_threads(threads) reduction(+ : total) schedule(static)
@@ -202,7 +210,7 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
       Eigen::VectorXd& part = partial[chunk];
       part.setZero(at.size());
       for (long i = size * chunk / threads; i < size * (chunk + 1) / threads; ++i) {
-        const Triangle& t = active[i];
+        const Triangle& t = list[i];
         Eigen::Matrix2d j;
         const double d = determinant(t, at, &j);
         const double root = std::sqrt(eps * eps + d * d);
@@ -227,11 +235,74 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
     for (int chunk = 1; chunk < threads; ++chunk) gradient += partial[chunk];
     return total;
   };
+  auto energy = [&](const Eigen::VectorXd& at, Eigen::VectorXd& gradient) { return energy_of(active, at, gradient); };
+
+  // A local round: only the unknowns within a few rings of the triangles
+  // left without room move, the rest (and every plane shared by more than
+  // a few vertices) held; only the triangles they touch are evaluated.
+  std::vector<int> seeds;  // original unknowns of the last round's triangles without room
+  auto minimize_locally = [&]() {
+    const int slots = static_cast<int>(y.size());
+    std::vector<char> free(slots, 0);
+    auto movable = [&](int s) { return slot_users[s] <= kLocalMaxUses; };
+    for (const int u : seeds)
+      if (movable(slot[u])) free[slot[u]] = 1;
+    for (int ring = 0; ring < kLocalRings; ++ring) {
+      std::vector<char> grown = free;
+      for (const Triangle& t : active) {
+        bool touches = false;
+        for (const auto& corner : t.unknown)
+          for (const int s : corner) touches = touches || free[s];
+        if (!touches) continue;
+        for (const auto& corner : t.unknown)
+          for (const int s : corner)
+            if (movable(s)) grown[s] = 1;
+      }
+      free.swap(grown);
+    }
+    std::vector<int> local_of(slots, -1), order;
+    for (int s = 0; s < slots; ++s)
+      if (free[s]) local_of[s] = static_cast<int>(order.size()), order.push_back(s);
+    const int free_count = static_cast<int>(order.size());
+    std::vector<Triangle> local;
+    for (const Triangle& t : active) {
+      bool touches = false;
+      for (const auto& corner : t.unknown)
+        for (const int s : corner) touches = touches || free[s];
+      if (!touches) continue;
+      Triangle mapped = t;
+      for (auto& corner : mapped.unknown)
+        for (int& s : corner) {
+          if (local_of[s] < 0) local_of[s] = static_cast<int>(order.size()), order.push_back(s);
+          s = local_of[s];
+        }
+      local.push_back(mapped);
+    }
+    Eigen::VectorXd z(order.size());
+    for (size_t i = 0; i < order.size(); ++i) z[i] = y[order[i]];
+    const Objective local_energy = [&](const Eigen::VectorXd& at, Eigen::VectorXd& gradient) {
+      const double value = energy_of(local, at, gradient);
+      gradient.tail(gradient.size() - free_count).setZero();  // held
+      return value;
+    };
+    const LbfgsResult run = minimize_lbfgs(local_energy, z, kIterationsPerRound, 1e-9, 1e-8);
+    for (int i = 0; i < free_count; ++i) y[order[i]] = z[i];
+    return run;
+  };
 
   double previous = std::numeric_limits<double>::infinity();
   size_t last_no_room = 0;
   for (result.rounds = 1; result.rounds <= max_rounds; ++result.rounds) {
-    const LbfgsResult run = minimize_lbfgs(energy, y, kIterationsPerRound, 1e-9, 1e-8);
+    LbfgsResult run;
+    const bool local = !seeds.empty();
+    if (!local) {
+      run = minimize_lbfgs(energy, y, kIterationsPerRound, 1e-9, 1e-8);
+    } else {
+      ++result.local_rounds;
+      run = minimize_locally();
+      Eigen::VectorXd unused;
+      run.value = energy(y, unused);
+    }
     double smallest = std::numeric_limits<double>::infinity();
     std::vector<int> no_room;
     for (size_t a = 0; a < active.size(); ++a) {
@@ -245,12 +316,17 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
     const double previous_value = previous;
     const size_t previous_no_room = last_no_room;
     last_no_room = no_room.size();
+    seeds.clear();
+    if (no_room.size() <= local_share * static_cast<double>(active.size()))
+      for (const int a : no_room)
+        for (const auto& corner : all[source[a]].unknown)
+          for (const int u : corner) seeds.push_back(u);
     previous = run.value;
+    result.untangled = no_room.empty();
     if (no_room.empty()) {
-      if (eps < 1e-4 || 1.0 - run.value / previous_value < kSettled) {
-        result.untangled = true;
-        break;
-      }
+      // The last round is global: the map away from the triangles that
+      // were without room is polished as before.
+      if (!local && (eps < 1e-4 || 1.0 - run.value / previous_value < kSettled)) break;
     } else if (result.rounds > 1 && no_room.size() > kStalled * previous_no_room) {
       // Stalled without area: no room in the charts.
       // Its corners share the coordinate in which it is thinnest (or that

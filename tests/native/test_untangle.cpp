@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <set>
 
 #include "deform/quality.h"
@@ -111,6 +112,33 @@ TEST(UntangleFlatCharts, MovesAChartPlaneToGiveItsNeighboursRoom) {
   EXPECT_NEAR(size[2] / size[0], 0.5, 0.1);
   EXPECT_LT(after.area_error, 0.1);
 }
+
+
+TEST(UntangleFlatCharts, LocalRoundsKeepTheContract) {
+  // A triangle of the block's -X side labelled +X: flat on the same plane
+  // as its neighbours, facing the other way, it has no room round after
+  // round (the case the local rounds are for) until it is put on a line.
+  Block b = block();
+  const auto relabelled = std::find(b.labels.begin(), b.labels.end(), 1);
+  ASSERT_NE(relabelled, b.labels.end());
+  *relabelled = 0;
+  ASSERT_TRUE(flat(b.vertices, b));
+  const QualityMeasure quality(b.vertices, b.triangles, b.labels);
+  const UntangledCharts global = untangle_flat_charts(b.vertices, b.vertices, b.triangles, b.labels, 30, 0.0);
+  const UntangledCharts local = untangle_flat_charts(b.vertices, b.vertices, b.triangles, b.labels, 30, 1.0);
+  EXPECT_EQ(global.local_rounds, 0);
+  EXPECT_GT(local.local_rounds, 0);
+  EXPECT_EQ(local.put_on_a_line, global.put_on_a_line);
+  EXPECT_TRUE(local.untangled);
+  EXPECT_TRUE(flat(local.positions, b));
+  const Figures g = quality.measure(global.positions), l = quality.measure(local.positions);
+  EXPECT_EQ(l.flipped_faces, 0);
+  EXPECT_LE(l.collapsed_faces, g.collapsed_faces);
+  EXPECT_LE(l.folded_edges, g.folded_edges);
+  EXPECT_LT(l.area_error, g.area_error + 0.01);
+  EXPECT_LT(l.edge_error, g.edge_error + 0.01);
+}
+
 
 }  // namespace
 }  // namespace polycube
