@@ -38,7 +38,7 @@ class ChartPlanes {
   void collapse(Eigen::Index t, int axis);
 
   // Reduces L (positive definite, e.g. with the diagonal shift of
-  // deform.cpp) to the flat-chart positions and factorises it, once per axis.
+  // deformation.h) to the flat-chart positions and factorises it, once per axis.
   // Called again after collapse() with the same L, it redoes only the axes
   // whose charts changed. Throws Error when a factorisation fails.
   void factorize(const Eigen::SparseMatrix<double>& laplacian);
