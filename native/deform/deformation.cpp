@@ -77,6 +77,19 @@ Vertices Deformation::solve(const SparseCholesky& cholesky, const Eigen::MatrixX
   return place(cholesky.solve(rhs));
 }
 
+void Deformation::release_factorization() {
+  factorization.release();
+  factorization_released = true;
+}
+
+void Deformation::restore_factorization() {
+  if (!factorization_released) return;
+  const SparseCholesky::Ordering ordering = factorization.ordering();
+  factorization.analyze(laplacian.matrix(), ordering);
+  factorization.factorize(laplacian.matrix());
+  factorization_released = false;
+}
+
 std::vector<int> Deformation::per_triangle(const std::vector<int>& face_labels) const {
   return spread(face_labels, triangulation);
 }
@@ -166,10 +179,7 @@ DeformResult Deformation::conclude() {
     if (factorization.factorizations() > 0) {
       // Freed once the charts were flat: factorised again (untimed) for the
       // reference, after the run's peak.
-      if (factorization_released) {
-        factorization.analyze(laplacian.matrix());
-        factorization.factorize(laplacian.matrix());
-      }
+      restore_factorization();
       const Eigen::MatrixX3d rhs = x;
       result.reference_solve_seconds = median_seconds([&] { return factorization.solve(rhs); });
     }

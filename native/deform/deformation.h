@@ -101,6 +101,13 @@ struct Deformation {
   Vertices place(const Eigen::MatrixX3d& solution) const;
   Vertices solve(const SparseCholesky& cholesky, const Eigen::MatrixX3d& rhs) const;
 
+  // The input's factorisation freed while other systems are factorised (the
+  // flat charts'), so that the two are never in memory together, and
+  // restored when it is needed again: the same matrix and ordering give the
+  // same factor.
+  void release_factorization();
+  void restore_factorization();
+
   // New labels per polygon face: result.labels, triangle_labels and the
   // measurement's labels.
   void set_labels(std::vector<int> face_labels);

@@ -33,6 +33,7 @@ void flatten_stage(RobustRun& run, int iteration) {
   ++run.flatten_attempts;
   const StageTimer timer(result.stages.flatten, d.flattening);
   run.last_attempt = iteration;
+  d.release_factorization();  // restored below unless the charts end flat
   const Placement place = [&d](const Eigen::MatrixX3d& solution) { return d.place(solution); };
   FlatCharts flat = flatten_charts(d.mesh.vertices, d.x, d.triangles(), d.triangle_labels, d.weights,
                                    d.laplacian.matrix(), d.shift, d.quality, place);
@@ -45,19 +46,20 @@ void flatten_stage(RobustRun& run, int iteration) {
     if (opened.fold_free && d.quality.collapsed_area_fraction(opened.states) <= kMaxCollapsedAreaFraction) {
       flat.positions = std::move(opened.positions);
       flat.states = std::move(opened.states);
-      flat.planes = std::make_unique<ChartPlanes>(d.n, d.triangles(), d.triangle_labels);
+      flat.planes = run.charts_like(*flat.planes);
       flat.found = true;
       result.untangled = true;
       d.untangled_at = iteration;
     }
   }
-  if (!flat.found) return;
+  if (!flat.found) {
+    d.restore_factorization();  // the continuous stage goes on
+    return;
+  }
   d.x = std::move(flat.positions);
   run.state = std::move(flat.states);
   run.planes = std::move(flat.planes);
   // From here on only the flat charts' systems are solved.
-  d.factorization.release();
-  d.factorization_released = true;
   run.continuous.current_factorization.release();
   result.flat_iteration = iteration;
   result.collapsed_on_purpose = flat.collapsed_on_purpose;

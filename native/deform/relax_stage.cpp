@@ -50,7 +50,8 @@ bool relax_stage(RobustRun& run, int iteration) {
   result.seconds.solve += d.phase.lap();
   if ((!found || run.relaxed) && !run.uncollapsed && result.collapsed_on_purpose > 0) {
     run.uncollapsed = true;
-    auto free_planes = std::make_unique<ChartPlanes>(d.n, d.triangles(), d.triangle_labels);
+    auto free_planes = run.charts_like(*run.planes);
+    run.planes->release();  // not in memory beside the free planes' factors; refactorised if needed again
     const Vertices free_target = relaxed_target(run, *free_planes);
     result.factorizations += free_planes->factorizations();
     if (blend_towards(run, free_target, true) >= 0.0) {
@@ -67,7 +68,7 @@ bool relax_stage(RobustRun& run, int iteration) {
     if (opened.fold_free && count(opened.states.collapsed) < count(run.state.collapsed)) {
       d.x = std::move(opened.positions);
       run.state = std::move(opened.states);
-      run.planes = std::make_unique<ChartPlanes>(d.n, d.triangles(), d.triangle_labels);
+      run.planes = run.charts_like(*run.planes);
       result.untangled = true;
       d.untangled_at = iteration;
       found = true;

@@ -46,6 +46,12 @@ FoldFreeStep RobustRun::controlled_step(const Vertices& target) const {
   return step;
 }
 
+std::unique_ptr<ChartPlanes> RobustRun::charts_like(const ChartPlanes& same_charts) const {
+  auto planes = std::make_unique<ChartPlanes>(d.n, d.triangles(), d.triangle_labels);
+  planes->use_chart_orderings(same_charts);
+  return planes;
+}
+
 void robust_iteration(Deformation& d) {
   RobustRun run(d);
   DeformResult& result = d.result;

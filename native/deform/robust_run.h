@@ -47,6 +47,9 @@ struct RobustRun {
   // A fold-free step towards `target` (fold_free_step.h), put back on the
   // components' centroids, which per-vertex steps move a little.
   FoldFreeStep controlled_step(const Vertices& target) const;
+  // The charts of the current labels without collapses, to factorise with
+  // the orderings of `same_charts` (of the same labels).
+  std::unique_ptr<ChartPlanes> charts_like(const ChartPlanes& same_charts) const;
 };
 
 // The whole robust run on a Deformation just built with variant kRobust.

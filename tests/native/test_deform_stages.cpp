@@ -218,7 +218,10 @@ TEST(DeformStages, ContinuousStepGoesOnFoldFreeWhereFlatChartsAreRefused) {
   }
   EXPECT_LT(figures_of(d).normal_deviation_mean_deg, fitted_mean);
   EXPECT_GT(d.result.stages.current_steps, 0);  // the input's step folds somewhere
-  EXPECT_EQ(d.factorization.factorizations(), 1);
+  // The input's factorisation, freed while the flat charts were tried and
+  // restored once they were refused; none per continuous step.
+  EXPECT_FALSE(d.factorization_released);
+  EXPECT_EQ(d.factorization.factorizations(), 2);
 }
 
 }  // namespace
