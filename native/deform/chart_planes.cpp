@@ -11,12 +11,27 @@ ChartPlanes::ChartPlanes(int vertex_count, const Triangles& triangles, const std
   sets_.fill(UnionFind(vertex_count));
   for (Eigen::Index t = 0; t < triangles.rows(); ++t)
     if (triangle_labels[t] >= 0) collapse(t, triangle_labels[t] / 2);
+  charts_only_.fill(true);
 }
 
 int ChartPlanes::root(int axis, int v) const { return sets_[axis].root(v); }
 
 void ChartPlanes::join(int axis, int a, int b) {
-  if (sets_[axis].join(a, b)) changed_[axis] = true;
+  if (sets_[axis].join(a, b)) {
+    changed_[axis] = true;
+    charts_only_[axis] = false;
+  }
+}
+
+void ChartPlanes::use_chart_orderings(const ChartPlanes& same_charts) {
+  chart_orderings_ = same_charts.chart_orderings_;
+}
+
+void ChartPlanes::release() {
+  for (int axis = 0; axis < 3; ++axis) {
+    cholesky_[axis].reset();
+    changed_[axis] = true;
+  }
 }
 
 void ChartPlanes::collapse(Eigen::Index t, int axis) {
@@ -51,7 +66,12 @@ void ChartPlanes::factorize(const Eigen::SparseMatrix<double>& laplacian) {
     Eigen::SparseMatrix<double> reduced(m, m);
     reduced.setFromTriplets(entries.begin(), entries.end());
     cholesky_[axis] = std::make_unique<SparseCholesky>();
-    cholesky_[axis]->analyze(reduced);
+    if (charts_only_[axis]) {
+      cholesky_[axis]->analyze(reduced, chart_orderings_[axis]);  // none known yet: computed
+      chart_orderings_[axis] = cholesky_[axis]->ordering();
+    } else {
+      cholesky_[axis]->analyze(reduced);
+    }
     cholesky_[axis]->factorize(reduced);
   }
 }

@@ -38,11 +38,18 @@ class ChartPlanes {
   void collapse(Eigen::Index t, int axis);
 
   // Reduces L (positive definite, e.g. with the diagonal shift of
-  // deform.cpp) to the flat-chart positions and factorises it, once per axis.
+  // deformation.h) to the flat-chart positions and factorises it, once per axis.
   // Called again after collapse() with the same L, it redoes only the axes
   // whose charts changed. Throws Error when a factorisation fails.
   void factorize(const Eigen::SparseMatrix<double>& laplacian);
   int factorizations() const { return factorizations_; }
+  // Another ChartPlanes of the same labels (its charts without this one's
+  // collapses) factorises those systems with `same_charts`' orderings
+  // (sparse_cholesky.h) instead of computing them again: the same factors,
+  // for less.
+  void use_chart_orderings(const ChartPlanes& same_charts);
+  // Frees the factors until the next factorize(), which redoes every axis.
+  void release();
   // Minimises x^T L x / 2 - b^T x over the unknowns whose vertices all lie
   // in `region`, every other vertex held at its value in `positions` (with
   // the charts and collapses as they are now): after a few collapses the
@@ -65,6 +72,10 @@ class ChartPlanes {
   std::array<std::vector<int>, 3> unknown_;         // per axis and vertex: its unknown
   std::array<std::unique_ptr<SparseCholesky>, 3> cholesky_;
   std::array<bool, 3> changed_ = {true, true, true};
+  // Per axis: nothing collapsed since the construction (the charts alone),
+  // and the ordering of the charts' system once known.
+  std::array<bool, 3> charts_only_ = {true, true, true};
+  std::array<SparseCholesky::Ordering, 3> chart_orderings_;
   int factorizations_ = 0;
 };
 

@@ -118,7 +118,7 @@ struct DeformResult {
   // more faces than the labels did at the start; then the latest state that
   // does neither (0: the input).
   int kept_iteration = 0;
-  bool converged = false;   // largest normal deviation below the tolerance, and not degenerate (see deform.cpp)
+  bool converged = false;   // largest normal deviation below the tolerance, and not degenerate (see deformation.h)
   bool stopped = false;     // the callback asked to stop
   std::string failure;      // why the solver broke off after some iterations; empty otherwise
   int unlabelled_faces = 0;

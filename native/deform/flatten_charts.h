@@ -43,11 +43,11 @@ struct FlatCharts {
   double collapsed_area = 0.0;         // share of the input's area collapsed
 };
 
-// Puts a solve back where the mesh stands (deform.cpp: component centroids).
+// Puts a solve back where the mesh stands (Deformation::place: component centroids).
 using Placement = std::function<Vertices(const Eigen::MatrixX3d& solution)>;
 
 // From `current`, with per-triangle labels 0..5 and the (shifted) Laplacian
-// `laplacian` of `weights` (deform.cpp). Tries at most `max_rounds` solves.
+// `laplacian` of `weights` (deformation.h). Tries at most `max_rounds` solves.
 FlatCharts flatten_charts(const Vertices& input, const Vertices& current, const Triangles& triangles,
                           const std::vector<int>& triangle_labels, const CotangentWeights& weights,
                           const Eigen::SparseMatrix<double>& laplacian, double shift, const QualityMeasure& quality,

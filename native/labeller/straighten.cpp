@@ -17,7 +17,7 @@
 namespace polycube {
 namespace {
 
-// Same as the deformation's shift (deform.cpp): definite, exact at fixed points.
+// Same as the deformation's shift (deform/deformation.h): definite, exact at fixed points.
 constexpr double kRelativeShift = 1e-8;
 // Agreement of two unit normals, (max(0, a.b))^4: 1 when parallel, 0.25 at
 // 40 degrees, 0 from 90 degrees on.

@@ -10,8 +10,27 @@
 
 namespace polycube {
 
+namespace {
+
+using Matrix = Eigen::SparseMatrix<double>;
+
+// Eigen's LDLT, whose analysis can also start from a known ordering: the
+// steps of its own analyzePattern (SimplicialCholesky.h) with the AMD call
+// replaced.
+class Simplicial : public Eigen::SimplicialLDLT<Matrix, Eigen::Lower, Eigen::AMDOrdering<int>> {
+ public:
+  void analyze_ordered(const Matrix& a, const SparseCholesky::Ordering& ordering) {
+    m_Pinv = ordering;
+    m_P = ordering.inverse();
+    CholMatrixType ap(a.rows(), a.cols());
+    ap.selfadjointView<Eigen::Upper>() = a.selfadjointView<Eigen::Lower>().twistedBy(m_P);
+    analyzePattern_preordered(ap, true);
+  }
+};
+
+}  // namespace
+
 struct SparseCholesky::Backends {
-  using Simplicial = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>>;
   std::unique_ptr<Simplicial> simplicial;
 #ifdef POLYCUBE_WITH_CHOLMOD
   std::unique_ptr<Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>>> supernodal;
@@ -24,6 +43,7 @@ SparseCholesky::~SparseCholesky() = default;
 void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& matrix, bool reused) {
   rows_ = matrix.rows();
   released_backend_ = nullptr;
+  ordering_.resize(0);
   backends_ = std::make_unique<Backends>();
 #ifdef POLYCUBE_WITH_CHOLMOD
   if (matrix.rows() >= kSupernodalThreshold) {
@@ -40,8 +60,23 @@ void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& matrix, bool reu
     backends_->supernodal.reset();
   }
 #endif
-  backends_->simplicial = std::make_unique<Backends::Simplicial>();
+  backends_->simplicial = std::make_unique<Simplicial>();
   backends_->simplicial->analyzePattern(matrix);
+  ordering_ = backends_->simplicial->permutationPinv();
+}
+
+void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& matrix, const Ordering& ordering) {
+  bool supernodal = false;
+#ifdef POLYCUBE_WITH_CHOLMOD
+  supernodal = matrix.rows() >= kSupernodalThreshold;
+#endif
+  if (supernodal || ordering.size() != matrix.rows()) return analyze(matrix);
+  rows_ = matrix.rows();
+  released_backend_ = nullptr;
+  ordering_ = ordering;
+  backends_ = std::make_unique<Backends>();
+  backends_->simplicial = std::make_unique<Simplicial>();
+  backends_->simplicial->analyze_ordered(matrix, ordering_);
 }
 
 void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& matrix) {
@@ -51,7 +86,7 @@ void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& matrix) {
     backends_->supernodal->factorize(matrix);
     if (backends_->supernodal->info() == Eigen::Success) return;
     backends_->supernodal.reset();  // not positive definite: LDLT from now on
-    backends_->simplicial = std::make_unique<Backends::Simplicial>();
+    backends_->simplicial = std::make_unique<Simplicial>();
     backends_->simplicial->analyzePattern(matrix);
   }
 #endif

@@ -40,6 +40,39 @@ TEST(SparseCholesky, SmallAndLargeSystemsSolveAccurately) {
   }
 }
 
+// A kept ordering gives the same factor bit for bit, and survives release();
+// one of another size is ignored (the analysis computes its own).
+TEST(SparseCholesky, AKeptOrderingGivesTheSameSolutionBitForBit) {
+  const SparseMatrix a = shifted_laplacian(test_meshes::uv_sphere(48, 24));
+  const Eigen::MatrixX3d b = Eigen::MatrixX3d::Random(a.rows(), 3);
+  SparseCholesky first;
+  first.analyze(a);
+  first.factorize(a);
+  const Eigen::MatrixX3d expected = first.solve(b);
+  ASSERT_EQ(first.ordering().size(), a.rows());
+  first.release();
+  EXPECT_TRUE(first.released());
+  ASSERT_EQ(first.ordering().size(), a.rows());
+  SparseCholesky second;
+  second.analyze(a, first.ordering());
+  second.factorize(a);
+  EXPECT_FALSE(second.released());
+  EXPECT_EQ(second.solve(b), expected);
+  EXPECT_EQ(second.ordering().indices(), first.ordering().indices());
+  // A natural ordering (another fill) still solves, not bit for bit.
+  SparseCholesky::Ordering identity(a.rows());
+  identity.setIdentity();
+  SparseCholesky natural;
+  natural.analyze(a, identity);
+  natural.factorize(a);
+  EXPECT_LT(relative_residual(a, natural.solve(b), b), 1e-8);
+  SparseCholesky::Ordering wrong_size(3);
+  wrong_size.setIdentity();
+  natural.analyze(a, wrong_size);
+  natural.factorize(a);
+  EXPECT_EQ(natural.solve(b), expected);
+}
+
 TEST(SparseCholesky, IndefiniteLargeSystemFallsBackToLdlt) {
   SparseMatrix a = shifted_laplacian(test_meshes::uv_sphere(400, 150));
   SparseCholesky cholesky;

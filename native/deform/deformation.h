@@ -1,0 +1,128 @@
+// What every variant of deform() (deform.h) builds once and then iterates on:
+// the triangulated mesh and its labels, the input's Laplacian and its
+// factorisation, the measurement of the figures, the current positions and
+// the result being filled. The stages (paper_iteration.h, robust_run.h) are
+// functions over this one struct, libigl-style: what is paid once is here,
+// what is paid per iteration is in them.
+//
+// Inputs of the constructor: a mesh already in the unit box that passed
+// check_input, its labels per polygon face (-1..5) and the options. It fills
+// unlabelled faces with their nearest axis, measures the input (and the
+// start shape, if any) and analyses the Laplacian's pattern; it does not
+// assemble or factorise.
+#pragma once
+
+#include <chrono>
+#include <vector>
+
+#include "deform/deform.h"
+#include "deform/quality.h"
+#include "linear_algebra/cotangent_weights.h"
+#include "linear_algebra/laplacian.h"
+#include "linear_algebra/sparse_cholesky.h"
+#include "mesh/components.h"
+#include "mesh/triangulate.h"
+
+namespace polycube {
+
+// L is singular: each component floats by a translation. A shift of eps on the
+// diagonal, with eps * x_i on the right, makes the system definite and is
+// exact at fixed points (L x_i = b there, so x_i still solves it); eps is far
+// below L's smallest non-zero eigenvalue on any mesh we can hold in memory.
+constexpr double kRelativeShift = 1e-8;
+
+class Stopwatch {
+ public:
+  // Seconds since the last lap (or the construction).
+  double lap() {
+    const auto now = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    return seconds;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+// Below the tolerance, and not by collapsing: collapsed triangles are left out
+// of the normal figures, so a mesh squeezed flat or to a point would pass
+// (the paper's `current` variant does that to armadillo and bunny00).
+bool converged(const Figures& figures, double tolerance_deg, Eigen::Index triangles);
+
+struct Deformation {
+  Deformation(const PolygonMesh& mesh, const std::vector<int>& labels, const DeformOptions& options,
+              const IterationCallback& callback);
+
+  const PolygonMesh& mesh;  // in the unit box
+  const std::vector<int>& given_labels;
+  const DeformOptions& options;
+  const IterationCallback& callback;
+  Stopwatch total, phase;  // the whole run; the current entry of PhaseSeconds
+
+  DeformResult result;                // labels: the given ones, unlabelled faces filled, then any repair
+  std::vector<int> nearest;           // per polygon face: the axis nearest its normal
+  std::vector<int> filled_labels;     // the given labels, unlabelled faces filled
+  Triangulation triangulation;
+  std::vector<int> triangle_labels;   // result.labels per triangle
+  int n = 0;                          // vertices
+  Components parts;
+  Eigen::MatrixX3d centroids;         // of the input's components
+  QualityMeasure quality;
+  Vertices x;                         // the current positions
+
+  Laplacian laplacian;                // of `weights`, with `shift` on the diagonal once assembled
+  SparseCholesky factorization;       // of the input's Laplacian (analysed here)
+  bool factorization_released = false;
+  CotangentWeights weights;
+  double shift = 0.0;
+
+  // Never worse than the input (docs/design.md section 2.6): a robust run
+  // whose last state folds more edges than the input, or flips more faces
+  // than its labels did at the start, returns the latest state that does
+  // neither; the input itself qualifies, so there is always one.
+  bool keep_acceptable = false;
+  int start_flipped = 0;
+  Vertices acceptable_x;
+  std::vector<int> acceptable_labels;
+  int untangled_at = 0;  // the iteration whose positions were untangled
+
+  // An iteration's time goes to its stage (StageSeconds), less the attempts
+  // at flattening it made, which are a stage of their own (`flattening`).
+  StageCost* stage = nullptr;
+  Stopwatch iteration_clock;
+  double flattening = 0.0;
+
+  const Triangles& triangles() const { return triangulation.triangles; }
+
+  // Puts a solution back where the mesh stands: every component's centroid
+  // where it was, isolated vertices where they were. Throws Error on a
+  // non-finite solution.
+  Vertices place(const Eigen::MatrixX3d& solution) const;
+  Vertices solve(const SparseCholesky& cholesky, const Eigen::MatrixX3d& rhs) const;
+
+  // The input's factorisation freed while other systems are factorised (the
+  // flat charts'), so that the two are never in memory together, and
+  // restored when it is needed again: the same matrix and ordering give the
+  // same factor.
+  void release_factorization();
+  void restore_factorization();
+
+  // New labels per polygon face: result.labels, triangle_labels and the
+  // measurement's labels.
+  void set_labels(std::vector<int> face_labels);
+  // result.labels spread to their triangles.
+  std::vector<int> per_triangle(const std::vector<int>& face_labels) const;
+
+  // Measures x (from `states` = face_states(x) when given), keeps it if
+  // acceptable, charges the iteration's time to `stage` and reports to the
+  // callback; false when the run must stop.
+  bool finish_iteration(int iteration, const FaceStates* states = nullptr);
+
+  // The result: the kept state, the relabelled, unconverged and flipped
+  // faces, the final figures and, with DeformOptions::time_references, the
+  // reference timings.
+  DeformResult conclude();
+};
+
+}  // namespace polycube

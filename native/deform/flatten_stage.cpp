@@ -1,0 +1,68 @@
+#include "deform/flatten_stage.h"
+
+#include "deform/flatten_charts.h"
+#include "deform/robust_run.h"
+#include "deform/untangle_step.h"
+
+namespace polycube {
+namespace {
+
+// Adds the time from its construction to its destruction to a stage's cost,
+// and to `also`.
+class StageTimer {
+ public:
+  StageTimer(StageCost& cost, double& also) : cost_(cost), also_(also) { ++cost_.count; }
+  ~StageTimer() {
+    const double seconds = clock_.lap();
+    cost_.seconds += seconds;
+    also_ += seconds;
+  }
+
+ private:
+  StageCost& cost_;
+  double& also_;
+  Stopwatch clock_;
+};
+
+}  // namespace
+
+void flatten_stage(RobustRun& run, int iteration) {
+  if (run.planes || run.flatten_attempts >= kMaxFlattenAttempts) return;
+  Deformation& d = run.d;
+  DeformResult& result = d.result;
+  ++run.flatten_attempts;
+  const StageTimer timer(result.stages.flatten, d.flattening);
+  run.last_attempt = iteration;
+  d.release_factorization();  // restored below unless the charts end flat
+  const Placement place = [&d](const Eigen::MatrixX3d& solution) { return d.place(solution); };
+  FlatCharts flat = flatten_charts(d.mesh.vertices, d.x, d.triangles(), d.triangle_labels, d.weights,
+                                   d.laplacian.matrix(), d.shift, d.quality, place);
+  result.seconds.factorize += d.phase.lap();  // nearly all of it
+  result.factorizations += flat.planes->factorizations();
+  result.flatten_attempts.push_back({iteration, flat.rounds, flat.states.flipped_count, flat.collapsed_area, flat.found});
+  if (!flat.found && flat.first_positions.size() > 0) {
+    UntangleStep opened = untangle_step(run, flat.first_positions);
+    result.seconds.solve += d.phase.lap();
+    if (opened.fold_free && d.quality.collapsed_area_fraction(opened.states) <= kMaxCollapsedAreaFraction) {
+      flat.positions = std::move(opened.positions);
+      flat.states = std::move(opened.states);
+      flat.planes = run.charts_like(*flat.planes);
+      flat.found = true;
+      result.untangled = true;
+      d.untangled_at = iteration;
+    }
+  }
+  if (!flat.found) {
+    d.restore_factorization();  // the continuous stage goes on
+    return;
+  }
+  d.x = std::move(flat.positions);
+  run.state = std::move(flat.states);
+  run.planes = std::move(flat.planes);
+  // From here on only the flat charts' systems are solved.
+  run.continuous.current_factorization.release();
+  result.flat_iteration = iteration;
+  result.collapsed_on_purpose = flat.collapsed_on_purpose;
+}
+
+}  // namespace polycube

@@ -1,0 +1,82 @@
+#include "deform/relax_stage.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "deform/flatten_charts.h"
+#include "deform/robust_run.h"
+#include "deform/untangle_step.h"
+
+namespace polycube {
+namespace {
+
+int count(const std::vector<char>& flags) { return static_cast<int>(std::count(flags.begin(), flags.end(), 1)); }
+
+// Moves the run towards a flat shape on the same charts, the whole step
+// halved until nothing folds and no more faces, or with `fewer` fewer
+// faces, are collapsed. Returns the step over the bounding box diagonal,
+// negative when no step qualifies.
+double blend_towards(RobustRun& run, const Vertices& target, bool fewer) {
+  Deformation& d = run.d;
+  const int collapsed = count(run.state.collapsed);
+  for (int halving = 0; halving <= kMaxHalvings; ++halving) {
+    Vertices next = d.x + std::ldexp(1.0, -halving) * (target - d.x);
+    FaceStates next_state = d.quality.face_states(next);
+    const int next_collapsed = count(next_state.collapsed);
+    if (next_state.flipped_count == 0 && (fewer ? next_collapsed < collapsed : next_collapsed <= collapsed)) {
+      const double size = (next - d.x).rowwise().norm().maxCoeff() / run.diagonal;
+      d.x = std::move(next);
+      run.state = std::move(next_state);
+      return size;
+    }
+  }
+  return -1.0;
+}
+
+Vertices relaxed_target(RobustRun& run, ChartPlanes& planes) {
+  Deformation& d = run.d;
+  return relax_flat_charts(d.mesh.vertices, d.x, d.triangles(), d.triangle_labels, d.weights, d.laplacian.matrix(),
+                           d.shift, planes, [&d](const Eigen::MatrixX3d& solution) { return d.place(solution); });
+}
+
+}  // namespace
+
+bool relax_stage(RobustRun& run, int iteration) {
+  Deformation& d = run.d;
+  DeformResult& result = d.result;
+  const double step_size = blend_towards(run, relaxed_target(run, *run.planes), false);
+  bool found = step_size >= 0.0;
+  if (found) run.relaxed = step_size < kFitStepTolerance;
+  result.seconds.solve += d.phase.lap();
+  if ((!found || run.relaxed) && !run.uncollapsed && result.collapsed_on_purpose > 0) {
+    run.uncollapsed = true;
+    auto free_planes = run.charts_like(*run.planes);
+    run.planes->release();  // not in memory beside the free planes' factors; refactorised if needed again
+    const Vertices free_target = relaxed_target(run, *free_planes);
+    result.factorizations += free_planes->factorizations();
+    if (blend_towards(run, free_target, true) >= 0.0) {
+      run.planes = std::move(free_planes);
+      found = true;
+      run.relaxed = false;
+    }
+    result.seconds.factorize += d.phase.lap();
+  }
+  if ((!found || run.relaxed) && !run.untangle_tried && count(run.state.collapsed) > 0 &&
+      (!result.untangled || d.quality.collapsed_area_fraction(run.state) > kUntangleAgainAbove)) {
+    run.untangle_tried = true;
+    UntangleStep opened = untangle_step(run, d.x);
+    if (opened.fold_free && count(opened.states.collapsed) < count(run.state.collapsed)) {
+      d.x = std::move(opened.positions);
+      run.state = std::move(opened.states);
+      run.planes = run.charts_like(*run.planes);
+      result.untangled = true;
+      d.untangled_at = iteration;
+      found = true;
+      run.relaxed = false;
+    }
+    result.seconds.solve += d.phase.lap();
+  }
+  return found;
+}
+
+}  // namespace polycube

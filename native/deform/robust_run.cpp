@@ -1,0 +1,105 @@
+#include "deform/robust_run.h"
+
+#include "deform/fit_step.h"
+#include "deform/flatten_stage.h"
+#include "deform/relabel_stalled_faces.h"
+#include "deform/relax_stage.h"
+#include "mesh/mesh_adjacency.h"
+
+namespace polycube {
+namespace {
+
+// The fitting phase ends after this many iterations at most: the fitted
+// shape is as-rigid-as-possible, not exact, so it is only a starting point.
+constexpr int kMaxFitIterations = 30;
+// Flattening is also retried this many iterations after the last attempt,
+// stalled or not.
+constexpr int kRetryIterations = 10;
+// Stalled: the largest deviation has not dropped by kProgress (relative) for
+// kStallIterations; then faces above kRepairDeviationDeg are candidates for
+// label repair (relabel_stalled_faces.h).
+constexpr int kStallIterations = 10;
+constexpr double kProgress = 0.01;
+constexpr double kRepairDeviationDeg = 45.0;
+
+}  // namespace
+
+RobustRun::RobustRun(Deformation& deformation) : d(deformation) {
+  DeformResult& result = d.result;
+  // Positive weights: with negative cotangents L is indefinite and the
+  // global step can fold triangles on its own (bone: 16% of the input's
+  // corners are obtuse, fandisk 7%). Clamping at zero keeps L positive
+  // semidefinite, and every fixed point is still an exact polycube.
+  d.weights = cotangent_weights(d.mesh.vertices, d.triangles()).cwiseMax(0.0);
+  d.shift = d.laplacian.assemble(d.weights, kRelativeShift);
+  result.seconds.assemble += d.phase.lap();
+  if (!result.converged) d.factorization.factorize(d.laplacian.matrix());
+  result.seconds.factorize += d.phase.lap();
+  state = d.quality.face_states(d.x);
+  adjacency = face_neighbours(mesh_adjacency(d.mesh.faces, d.n), d.mesh.faces.count());
+  diagonal = (d.mesh.vertices.colwise().maxCoeff() - d.mesh.vertices.colwise().minCoeff()).norm();
+}
+
+FoldFreeStep RobustRun::controlled_step(const Vertices& target) const {
+  FoldFreeStep step = fold_free_step(d.x, state, target, d.triangles(), d.quality, kMaxHalvings);
+  step.positions = place_components(step.positions, step.positions, d.parts, d.centroids);
+  return step;
+}
+
+std::unique_ptr<ChartPlanes> RobustRun::charts_like(const ChartPlanes& same_charts) const {
+  auto planes = std::make_unique<ChartPlanes>(d.n, d.triangles(), d.triangle_labels);
+  planes->use_chart_orderings(same_charts);
+  return planes;
+}
+
+void robust_iteration(Deformation& d) {
+  RobustRun run(d);
+  DeformResult& result = d.result;
+  bool exact = false;  // fitting done
+  int fit_iterations = 0, since_progress = 0;
+  double best_max = run.state.max_deviation_deg;
+  for (int iteration = 1; iteration <= d.options.iterations && (!result.converged || (run.planes && !run.relaxed));
+       ++iteration) {
+    d.stage = run.planes ? &result.stages.relax : exact ? &result.stages.continuous : &result.stages.fit;
+    if (run.planes) {
+      if (!relax_stage(run, iteration) || !d.finish_iteration(iteration)) break;
+      continue;
+    }
+    if (!exact) ++fit_iterations;
+    FoldFreeStep step = exact ? continuous_step(run, iteration) : fit_step(run);
+    const double step_size = (step.positions - d.x).rowwise().norm().maxCoeff() / run.diagonal;
+    d.x = std::move(step.positions);
+    run.state = std::move(step.states);
+
+    if (!exact && (step_size < kFitStepTolerance || fit_iterations >= kMaxFitIterations)) {
+      exact = true;
+      flatten_stage(run, iteration);
+    }
+    // Stalled: the largest deviation has not improved for a while. Faces
+    // held back by the step control are the usual reason: repair their
+    // labels where a neighbour's label fits them (relabel_stalled_faces.h).
+    if (run.state.max_deviation_deg < best_max * (1.0 - kProgress)) {
+      best_max = run.state.max_deviation_deg;
+      since_progress = 0;
+    } else if (exact && ++since_progress >= kStallIterations) {
+      since_progress = 0;
+      std::vector<int> labels = result.labels;
+      const std::vector<int> changed =
+          relabel_stalled_faces(d.x, d.triangulation, run.adjacency, run.state, kRepairDeviationDeg, labels);
+      if (!changed.empty()) {
+        d.set_labels(std::move(labels));
+        run.state = d.quality.face_states(d.x);
+        best_max = run.state.max_deviation_deg;
+      }
+      flatten_stage(run, iteration);
+    } else if (exact && iteration - run.last_attempt >= kRetryIterations) {
+      // The continuous iteration can keep improving slowly for a long
+      // time while a few folds blocked the last attempt (fandisk: 4 folds
+      // at iteration 9, then no stall until iteration 100).
+      flatten_stage(run, iteration);
+    }
+    if (!d.finish_iteration(iteration, &run.state)) break;
+  }
+}
+
+}  // namespace polycube

@@ -1,0 +1,58 @@
+// The `robust` variant (deform.h, docs/design.md sections 2.5-2.6): the
+// paper's iteration made fold-free, as a sequence of named stages over one
+// state. robust_iteration() is the whole run:
+//
+//   fit (fit_step.h)              until the fitted shape stops moving, then
+//   flatten (flatten_stage.h)     every chart flat at once; when that is kept:
+//     relax (relax_stage.h)       as-rigid-as-possible inside the flat charts,
+//                                 untangling collapsed slivers (untangle_step.h);
+//   otherwise continuous (continuous_step.h): the paper's step, fold-free,
+//                                 relabelling stalled faces and flattening again.
+//
+// Each stage is a function of its own, callable alone (its tests do).
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "deform/chart_planes.h"
+#include "deform/continuous_step.h"
+#include "deform/deformation.h"
+#include "deform/fold_free_step.h"
+
+namespace polycube {
+
+// Steps of a vertex are halved at most this often before it is held
+// (fold_free_step.h); whole blends towards a flat shape likewise.
+constexpr int kMaxHalvings = 6;
+// The fitting phase ends when no vertex moves more than this fraction of the
+// bounding box diagonal; relaxing ends likewise.
+constexpr double kFitStepTolerance = 1e-3;
+
+struct RobustRun {
+  // Positive cotangent weights, the input's Laplacian assembled and (unless
+  // the start converged already) factorised, the start's face states.
+  explicit RobustRun(Deformation& deformation);
+
+  Deformation& d;
+  FaceStates state;                                // of d.x
+  std::vector<std::vector<int>> adjacency;         // polygon faces' neighbours
+  double diagonal = 0.0;                           // of the input's bounding box
+  ContinuousFallback continuous;                   // the current mesh's Laplacian, when needed
+  // Once flat (flatten_stage): the charts and collapses, factorised.
+  std::unique_ptr<ChartPlanes> planes;
+  bool relaxed = false, uncollapsed = false, untangle_tried = false;
+  int flatten_attempts = 0, last_attempt = 0;
+
+  // A fold-free step towards `target` (fold_free_step.h), put back on the
+  // components' centroids, which per-vertex steps move a little.
+  FoldFreeStep controlled_step(const Vertices& target) const;
+  // The charts of the current labels without collapses, to factorise with
+  // the orderings of `same_charts` (of the same labels).
+  std::unique_ptr<ChartPlanes> charts_like(const ChartPlanes& same_charts) const;
+};
+
+// The whole robust run on a Deformation just built with variant kRobust.
+void robust_iteration(Deformation& deformation);
+
+}  // namespace polycube

@@ -1,0 +1,19 @@
+#include "deform/untangle_step.h"
+
+#include "deform/robust_run.h"
+#include "deform/untangle_flat_charts.h"
+
+namespace polycube {
+
+UntangleStep untangle_step(const RobustRun& run, const Vertices& flat) {
+  const Deformation& d = run.d;
+  UntangleStep opened;
+  opened.positions = d.place(untangle_flat_charts(d.mesh.vertices, flat, d.triangles(), d.triangle_labels).positions);
+  opened.states = d.quality.face_states(opened.positions);
+  opened.fold_free = opened.states.flipped_count == 0 &&
+                     d.quality.measure(opened.positions, opened.states, false).folded_edges <=
+                         d.result.input_folded_edges;
+  return opened;
+}
+
+}  // namespace polycube
