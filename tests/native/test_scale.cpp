@@ -80,9 +80,11 @@ void expect_same_run(const Model& model, const DeformResult& unit, double scale,
   EXPECT_EQ(r.untangled, unit.untangled) << what;
   ASSERT_TRUE(r.positions.allFinite()) << what;
   if (!exact && unit.untangled) {
-    EXPECT_NEAR(r.figures.collapsed_faces, unit.figures.collapsed_faces, 5) << what;
-    EXPECT_NEAR(r.figures.edge_error, unit.figures.edge_error, 0.02 * unit.figures.edge_error) << what;
-    EXPECT_NEAR(r.figures.area_error, unit.figures.area_error, 0.02 * unit.figures.area_error) << what;
+    // Non-convex untangling, and the second run (stage 8) kept at one scale
+    // and not at another: close, not identical (docs/design.md section 2.6).
+    EXPECT_NEAR(r.figures.collapsed_area, unit.figures.collapsed_area, 0.002) << what;
+    EXPECT_NEAR(r.figures.edge_error, unit.figures.edge_error, 0.05 * unit.figures.edge_error) << what;
+    EXPECT_NEAR(r.figures.area_error, unit.figures.area_error, 0.05 * unit.figures.area_error) << what;
     EXPECT_LT(r.figures.normal_deviation_max_deg, 0.5) << what;
     return;
   }
