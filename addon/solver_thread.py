@@ -50,7 +50,8 @@ class SolverThread(threading.Thread):
 
         start = perf_counter()
         try:
-            result = polycube_native.deform(*self._args, callback=on_iteration, **self._kwargs)
+            result = polycube_native.deform(*self._args, callback=on_iteration,
+                                            stop=self._stop_requested.is_set, **self._kwargs)
         except Exception as error:  # handed to the main thread, which reports it
             self._queue.put(("error", error))
         else:

@@ -80,10 +80,15 @@ struct DeformOptions {
   // measurement of the result (DeformResult::reference_seconds): the units
   // `make bench` states the cost of an iteration in.
   bool time_references = false;
-  // Robust variant: when the result is exact but collapsed faces, run once
-  // more from the input with those faces relabelled (relabel_collapsed_faces.h)
-  // and keep the run that collapses less.
+  // Robust variant: when the result is exact but collapsed faces, run again
+  // from the input with those faces relabelled (relabel_collapsed_faces.h),
+  // keep the run that collapses less, and repeat while one is kept (at most
+  // three further runs).
   bool relabel_collapsed = true;
+  // Polled after every iteration of those further runs, which the callback
+  // does not see: returning true stops them, keeping the run before (Esc in
+  // Blender). The callback stops the first run.
+  std::function<bool()> stop_requested;
 };
 
 struct PhaseSeconds {

@@ -78,4 +78,29 @@ std::vector<char> charts_with_open_side(const MeshAdjacency& adjacency, const Ch
   return open_side;
 }
 
+std::vector<int> chart_band(const std::vector<std::vector<int>>& neighbours, const Charts& charts, int chart,
+                            const std::vector<int>& seed, int depth) {
+  std::vector<int> result;
+  std::vector<char> taken(charts.of_face.size(), 0);
+  for (int f : seed)
+    if (charts.of_face[f] == chart && !taken[f]) {
+      taken[f] = 1;
+      result.push_back(f);
+    }
+  std::vector<int> frontier = result;
+  for (int step = 1; step < depth; ++step) {
+    std::vector<int> next;
+    for (int f : frontier)
+      for (int g : neighbours[f])
+        if (charts.of_face[g] == chart && !taken[g]) {
+          taken[g] = 1;
+          result.push_back(g);
+          next.push_back(g);
+        }
+    frontier = std::move(next);
+  }
+  std::sort(result.begin(), result.end());
+  return result;
+}
+
 }  // namespace polycube

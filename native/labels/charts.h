@@ -42,6 +42,12 @@ std::vector<ChartBoundary> chart_boundaries(const MeshAdjacency& adjacency, cons
 // one chart.
 std::vector<char> charts_with_open_side(const MeshAdjacency& adjacency, const Charts& charts);
 
+// The faces of `chart` within `depth` edge-steps of the `seed` faces (seed
+// faces of other charts are skipped), increasing: a band along a chart
+// boundary, for the repairs to move. neighbours: face_neighbours.
+std::vector<int> chart_band(const std::vector<std::vector<int>>& neighbours, const Charts& charts, int chart,
+                            const std::vector<int>& seed, int depth);
+
 // The distinct charts around vertex v, increasing.
 std::vector<int> charts_at_vertex(const MeshAdjacency& adjacency, const Charts& charts, int v);
 

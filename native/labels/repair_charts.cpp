@@ -102,36 +102,6 @@ std::vector<int> recut(const LabelEnergy& energy, const std::vector<int>& labels
   return result;
 }
 
-// The faces of `chart` within `depth` edge-steps of `seed` faces (seed faces
-// of other charts are skipped).
-std::vector<int> band(const MeshAdjacency& adjacency, const std::vector<std::vector<int>>& face_edges,
-                      const Charts& ch, int chart, const std::vector<int>& seed, int depth) {
-  std::vector<int> result;
-  std::vector<char> taken(ch.of_face.size(), 0);
-  for (int f : seed)
-    if (ch.of_face[f] == chart && !taken[f]) {
-      taken[f] = 1;
-      result.push_back(f);
-    }
-  std::vector<int> frontier = result;
-  for (int step = 1; step < depth; ++step) {
-    std::vector<int> next;
-    for (int f : frontier)
-      for (int e : face_edges[f])
-        for (int k = adjacency.edge_offsets[e]; k < adjacency.edge_offsets[e + 1]; ++k) {
-          const int g = adjacency.edge_faces[k];
-          if (ch.of_face[g] == chart && !taken[g]) {
-            taken[g] = 1;
-            result.push_back(g);
-            next.push_back(g);
-          }
-        }
-    frontier = std::move(next);
-  }
-  std::sort(result.begin(), result.end());
-  return result;
-}
-
 std::vector<int> joined(std::vector<int> a, const std::vector<int>& b) {
   a.insert(a.end(), b.begin(), b.end());
   return a;
@@ -153,8 +123,9 @@ Move absorb(int chart, const std::vector<std::vector<int>>& neighbours, const Ch
 }
 
 std::vector<Move> candidate_moves(const MeshAdjacency& adjacency, const LabelEnergy& energy,
-                                  const std::vector<int>& labels, const std::vector<std::vector<int>>& face_edges,
-                                  const Charts& ch, const std::vector<std::vector<int>>& chart_faces,
+                                  const std::vector<int>& labels,
+                                  const std::vector<std::vector<int>>& neighbours_of_face, const Charts& ch,
+                                  const std::vector<std::vector<int>>& chart_faces,
                                   const std::vector<std::vector<int>>& neighbours, const LabelViolation& v) {
   std::vector<Move> moves;
   switch (v.kind) {
@@ -175,14 +146,14 @@ std::vector<Move> candidate_moves(const MeshAdjacency& adjacency, const LabelEne
         if (l / 2 == v.label / 2) continue;  // the orthogonal labels only
         moves.push_back({chart_faces[v.chart], l});
         for (int chart : {v.chart, other})
-          for (int depth : {1, 2}) moves.push_back({band(adjacency, face_edges, ch, chart, v.faces, depth), l});
+          for (int depth : {1, 2}) moves.push_back({chart_band(neighbours_of_face, ch, chart, v.faces, depth), l});
       }
       for (int chart : {v.chart, other})
         for (int depth : {1, 2, 3})
-          moves.push_back({band(adjacency, face_edges, ch, chart, v.faces, depth), kEachFaceBest, v.label / 2});
+          moves.push_back({chart_band(neighbours_of_face, ch, chart, v.faces, depth), kEachFaceBest, v.label / 2});
       for (int chart : {v.chart, other})
         for (int depth : {2, 4}) {
-          Move move{band(adjacency, face_edges, ch, chart, v.faces, depth), kEachFaceBest, v.label / 2};
+          Move move{chart_band(neighbours_of_face, ch, chart, v.faces, depth), kEachFaceBest, v.label / 2};
           move.result = recut(energy, labels, move.faces, v.label / 2);
           moves.push_back(std::move(move));
         }
@@ -280,8 +251,8 @@ struct Stuck {
 struct Greedy {
   const MeshAdjacency& adjacency;
   const LabelEnergy& energy;
-  std::vector<std::vector<int>> face_edges;
-  long budget;  // candidate evaluations left
+  std::vector<std::vector<int>> neighbours_of_face;  // face_neighbours
+  long budget;                                       // candidate evaluations left
 
   // Greedy moves until valid, stuck or out of moves; the best `keep` of the
   // non-improving candidates of the last round go to `stuck`.
@@ -317,7 +288,8 @@ std::vector<int> Greedy::run(std::vector<int> labels, int& score, int max_moves,
       int best_score = score;
       double best_cost = 0.0;
       std::vector<int> best;
-      for (const Move& move : candidate_moves(adjacency, energy, labels, face_edges, ch, faces_of_chart, neighbours, v)) {
+      for (const Move& move :
+           candidate_moves(adjacency, energy, labels, neighbours_of_face, ch, faces_of_chart, neighbours, v)) {
         if (move.faces.empty() || move.label < 0 || budget-- <= 0) continue;
         std::vector<int> candidate = move.result.empty() ? labels : move.result;
         for (int f : move.result.empty() ? move.faces : std::vector<int>{}) {
@@ -327,14 +299,17 @@ std::vector<int> Greedy::run(std::vector<int> labels, int& score, int max_moves,
           }
           int best_label = -1;
           for (int l = 0; l < 6; ++l)
-            if (l / 2 != move.axis && (best_label < 0 || energy.data(f, l) < energy.data(f, best_label))) best_label = l;
+            if (l / 2 != move.axis && (best_label < 0 || energy.data(f, l) < energy.data(f, best_label)))
+              best_label = l;
           candidate[f] = best_label;
         }
         const int s = violation_score(adjacency, candidate);
         if (s >= score) {
           if (stuck && keep > 0) {
             const double e = energy(candidate);
-            auto worse = [](const Stuck& a, const Stuck& b) { return std::tie(a.score, a.energy) < std::tie(b.score, b.energy); };
+            auto worse = [](const Stuck& a, const Stuck& b) {
+              return std::tie(a.score, a.energy) < std::tie(b.score, b.energy);
+            };
             stuck->push_back({s, e, std::move(candidate)});
             std::stable_sort(stuck->begin(), stuck->end(), worse);
             if (stuck->size() > keep) stuck->pop_back();
@@ -366,12 +341,8 @@ constexpr size_t kLookahead = 4;
 constexpr int kLookaheadMoves = 12;
 
 Greedy make_greedy(const MeshAdjacency& adjacency, const LabelEnergy& energy, int face_count) {
-  Greedy greedy{adjacency, energy, std::vector<std::vector<int>>(face_count),
+  return Greedy{adjacency, energy, face_neighbours(adjacency, face_count),
                 std::max(2000L, 100000000L / std::max(1, face_count))};
-  for (int e = 0; e < adjacency.edge_count(); ++e)
-    for (int k = adjacency.edge_offsets[e]; k < adjacency.edge_offsets[e + 1]; ++k)
-      greedy.face_edges[adjacency.edge_faces[k]].push_back(e);
-  return greedy;
 }
 
 }  // namespace

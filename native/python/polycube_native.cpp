@@ -139,7 +139,8 @@ py::dict figures_dict(const Figures& figures) {
 
 py::dict deform_py(const DoubleArray& vertices, const IntArray& face_indices, const IntArray& face_sizes,
                    const IntArray& labels, int iterations, double tolerance, const std::string& variant,
-                   bool relabel_collapsed, const std::optional<py::function>& callback) {
+                   bool relabel_collapsed, const std::optional<py::function>& callback,
+                   const std::optional<py::function>& stop) {
   PolygonMesh mesh = to_mesh(vertices, face_indices, face_sizes);
   const std::vector<int> face_labels = to_labels(labels);
   DeformOptions options;
@@ -148,6 +149,11 @@ py::dict deform_py(const DoubleArray& vertices, const IntArray& face_indices, co
   options.variant = parse_variant(variant);
   options.relabel_collapsed = relabel_collapsed;
 
+  if (stop)
+    options.stop_requested = [&stop]() {
+      py::gil_scoped_acquire gil;
+      return py::cast<bool>(py::bool_((*stop)()));
+    };
   IterationCallback on_iteration;
   if (callback) {
     on_iteration = [&callback](int iteration, const Vertices& positions, const Figures& figures) {
@@ -401,14 +407,15 @@ PYBIND11_MODULE(polycube_native, m) {
         py::arg("labels"), py::kw_only(), py::arg("iterations") = 100, py::arg("tolerance") = 0.5,
         py::arg("variant") = variant_name(DeformOptions{}.variant),
         py::arg("relabel_collapsed") = DeformOptions{}.relabel_collapsed, py::arg("callback") = py::none(),
-        R"(Deform a mesh towards its polycube.
+        py::arg("stop") = py::none(), R"(Deform a mesh towards its polycube.
 
 vertices (n, 3) float; face_indices: all face corners, flat; face_sizes: corners per face;
 labels: per face, 0..5 = +X, -X, +Y, -Y, +Z, -Z, -1 = nearest axis.
 callback(iteration, positions, figures) is called after every iteration; returning False stops.
 relabel_collapsed (robust): an exact result that collapsed faces is run once more with them
 relabelled, and that run kept when less collapses (docs/design.md section 2.6, stage 8; the
-callback sees its result once, as the last iteration).
+callback sees its result once, as the last iteration). stop() is polled during those runs,
+which the callback does not see; returning True stops them and keeps the run before.
 Returns {"positions", "labels", "report"}; the report's face lists (unconverged_faces,
 flipped_face_ids, relabelled_faces) hold every id, as int32 arrays. Raises ValueError on bad input.)");
   m.def("nearest_labels", &nearest_labels_py, py::arg("vertices"), py::arg("face_indices"), py::arg("face_sizes"),

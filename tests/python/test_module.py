@@ -78,6 +78,26 @@ def test_callback_sees_each_iteration_and_can_stop(native, sphere):
         assert figures["flipped_faces"] == expected["flipped_faces"]
 
 
+def test_stop_ends_the_further_runs_and_keeps_the_first(native, real_mesh):
+    # The eight's automatic labels collapse faces in the first run; the runs
+    # with them relabelled (stage 8) are silent, so only `stop` can end them.
+    vertices, indices, sizes = real_mesh("eight")
+    labels = native.auto_labels(vertices, indices, sizes)
+    once = native.deform(vertices, indices, sizes, labels, relabel_collapsed=False)["report"]
+    assert once["converged"] and once["collapsed_faces"] > 0
+    polls = []
+
+    def stop():
+        polls.append(True)
+        return True
+
+    stopped = native.deform(vertices, indices, sizes, labels, stop=stop)
+    assert polls and stopped["report"]["second_run_iterations"] == 0
+    assert stopped["report"]["collapsed_faces"] == once["collapsed_faces"]
+    further = native.deform(vertices, indices, sizes, labels, stop=lambda: False)["report"]
+    assert further["second_run_iterations"] > 0 and further["collapsed_area"] < 0.5 * once["collapsed_area"]
+
+
 def test_callback_exception_propagates(native, sphere):
     vertices, indices, sizes = sphere
 
