@@ -21,8 +21,7 @@
 //    (labels/squeezed_triangles.h), and repair again, a few rounds.
 // 5. Open components that mostly look one way (an eyeball, a leaf) take
 //    one label: one flat chart each (labels/open_caps.h).
-// 6. Merge away small charts where a short repair allows it (simplify_below:
-//    0.1% of the area at the default detail, more at lower detail).
+// 6. At low detail, merge away small charts (simplify_below).
 // Deterministic: the same mesh and options give the same labels.
 #pragma once
 
@@ -38,8 +37,8 @@ struct AutoLabelOptions {
   // few large charts (a polycube a modeller would sketch), 1 many small ones
   // that follow every feature; 0.5 is the default below. It sets the
   // compactness (3 at 0, 0.3 at 0.5, 0.03 at 1), the straightening's
-  // smoothing rings (12, 3, 1) and the share of the area under which charts
-  // are merged away (1% at 0, 0.55% at 0.25, 0.1% at 0.5, none at 1).
+  // smoothing rings (12, 3, 1) and, below 0.5, the share of the area under
+  // which charts are merged away (1% at 0, 0.5% at 0.25, none from 0.5).
   // Throws Error outside 0..1.
   static AutoLabelOptions with_detail(double detail);
 
@@ -53,7 +52,7 @@ struct AutoLabelOptions {
   // Step 6: charts under this share of the area merge into a neighbour where
   // a short repair keeps the polycube conditions (repair_charts.h,
   // simplify_charts); 0 merges none.
-  double simplify_below = 0.001;
+  double simplify_below = 0.0;
 };
 
 // One label 0..5 per face. Throws Error on input check_input rejects.
