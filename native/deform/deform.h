@@ -83,7 +83,7 @@ struct DeformOptions {
   // Robust variant: when the result is exact but collapsed faces, run again
   // from the input with those faces relabelled (relabel_collapsed_faces.h),
   // keep the run that collapses less, and repeat while one is kept (at most
-  // three further runs).
+  // six further runs).
   bool relabel_collapsed = true;
   // Polled after every iteration of those further runs, which the callback
   // does not see: returning true stops them, keeping the run before (Esc in

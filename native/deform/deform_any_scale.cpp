@@ -27,7 +27,7 @@ constexpr double kBarred = 1e6;
 constexpr int kRepairMoves = 200;
 // Stage 8 runs again while a run is kept, at most this many times: each
 // round's polycube shows the collapsed faces the last relabelling left.
-constexpr int kRerunRounds = 3;
+constexpr int kRerunRounds = 6;
 
 // Stage 8 (docs/design.md section 2.6): an exact polycube that collapsed
 // faces is run once more from the input, its collapsed faces relabelled
