@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Polycube Remesh: an all-quad copy of the object from its polycube, irregular
-vertices only at the polycube's corners; materials, smooth shading and UV maps
+vertices only at the polycube's corners (and, on an open mesh, at the corners of
+its boundaries laid along the grid); materials, smooth shading and UV maps
 carried over from the surface under it."""
 
 import bpy
@@ -81,8 +82,10 @@ class OBJECT_OT_polycube_remesh(bpy.types.Operator):
             self.report({'ERROR'}, failure(obj.name, "remeshed", error))
             return {'CANCELLED'}
         copy = self._new_object(context, obj, result)
+        boundaries = (f"; {result['straightened_loops']} of {result['boundary_loops']} open boundaries laid "
+                      f"along the grid" if result["boundary_loops"] else "")
         self.report({'INFO'}, f"'{copy.name}': {len(result['face_sizes'])} quads, "
-                              f"{result['irregular_vertices']} irregular vertices (polycube corners).")
+                              f"{result['irregular_vertices']} irregular vertices (polycube corners){boundaries}.")
         return {'FINISHED'}
 
     def _new_object(self, context, obj, result):

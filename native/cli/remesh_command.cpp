@@ -37,6 +37,8 @@ int remesh_command(const std::vector<std::string>& args) {
                         {"quads", remesh.mesh.faces.count()},
                         {"irregular_vertices", remesh.irregular_vertices},
                         {"open_edges", remesh.open_edges},
+                        {"boundary_loops", remesh.boundary_loops},
+                        {"straightened_loops", remesh.straightened_loops},
                         {"grid_spacing", remesh.grid_spacing}};
   print_line(json_text(figures, -1));
   flush_stdout();

@@ -383,6 +383,8 @@ py::dict quad_remesh_py(const DoubleArray& vertices, const IntArray& face_indice
   out["vertex_weights"] = weights;
   out["irregular_vertices"] = remesh.irregular_vertices;
   out["open_edges"] = remesh.open_edges;
+  out["boundary_loops"] = remesh.boundary_loops;
+  out["straightened_loops"] = remesh.straightened_loops;
   out["grid_spacing"] = remesh.grid_spacing;
   return out;
 }
@@ -494,6 +496,7 @@ their vertices evened out on the input by relax_iterations sweeps (0: the grid a
 Returns {"vertices", "face_indices", "face_sizes" (all 4), "source_face" (input face under each
 quad), "label", "vertex_corners" and "vertex_weights" (each vertex as weights of three input face
 corners, indices into face_indices: carries per-corner data such as UVs), "irregular_vertices",
-"open_edges", "grid_spacing"}. Raises ValueError with one
+"open_edges", "boundary_loops", "straightened_loops" (open boundary loops laid along grid lines),
+"grid_spacing"}. Raises ValueError with one
 sentence: not an exact polycube, a folded one, an edge length larger than the model, ...)");
 }

@@ -15,6 +15,7 @@
 #include "use/polycube_surface.h"
 #include "use/quantise_planes.h"
 #include "use/relax_on_surface.h"
+#include "use/straighten_boundaries.h"
 
 namespace polycube {
 namespace {
@@ -116,6 +117,26 @@ QuadRemesh quad_remesh(const PolygonMesh& input, const Vertices& polycube, const
   std::array<AxisGrid, 3> grid;
   for (int a = 0; a < 3; ++a) grid[a] = quantise_planes(plane_coordinates[a], h, flat_tolerance);
 
+  // Open boundaries laid along grid lines (straighten_boundaries): straight rows of quads
+  // follow them instead of a staircase. The planes stay, so only the flat corners change.
+  const MeshAdjacency input_adjacency = mesh_adjacency(input.faces, static_cast<int>(input.vertices.rows()));
+  bool input_open = false;
+  for (int e = 0; e < input_adjacency.edge_count(); ++e) input_open |= input_adjacency.faces_of_edge(e) == 1;
+  if (input_open) {
+    const StraightBoundaries straight = straighten_boundaries(input, polycube, surface, grid, 2.0 * h);
+    out.boundary_loops = straight.loops;
+    out.straightened_loops = straight.straightened;
+    for (FlatTriangle& t : flats) {
+      const int b = (t.axis + 1) % 3, c = (t.axis + 2) % 3;
+      for (int k = 0; k < 3; ++k) {
+        const int v = triangles(t.triangle, k);
+        t.corner[k] = {straight.polycube(v, b), straight.polycube(v, c)};
+      }
+      const Eigen::Vector2d e1 = t.corner[1] - t.corner[0], e2 = t.corner[2] - t.corner[0];
+      t.area2 = e1.x() * e2.y() - e1.y() * e2.x();
+    }
+  }
+
   // Grid squares by the flat triangle under their centre, grid vertices by the
   // flat triangle that holds them deepest inside.
   std::unordered_map<Key, int, KeyHash> square_of;
@@ -187,9 +208,6 @@ QuadRemesh quad_remesh(const PolygonMesh& input, const Vertices& polycube, const
   // squares on one side of a grid edge (each centre on the surface, their edge
   // not): the one whose centre lies deeper inside its triangle stays. Elsewhere
   // two such squares mean the polycube touches itself.
-  const MeshAdjacency input_adjacency = mesh_adjacency(input.faces, static_cast<int>(input.vertices.rows()));
-  bool input_open = false;
-  for (int e = 0; e < input_adjacency.edge_count(); ++e) input_open |= input_adjacency.faces_of_edge(e) == 1;
   std::vector<char> dropped(squares.size(), 0);
   for (;;) {
     std::map<std::array<Key, 2>, std::vector<int>> users;  // directed edge -> squares walking it

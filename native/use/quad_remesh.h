@@ -6,8 +6,11 @@
 // contains it (the same barycentric coordinates on the input triangle).
 //
 // So the result is all quads, manifold, closed where the input is closed, and
-// its vertices of valence other than 4 sit only at polycube corners. Collapsed
-// triangles carry no area: no grid square lands in them.
+// its vertices of valence other than 4 sit only at polycube corners. Where the
+// input is open, its boundary loops are first laid along grid lines on the
+// polycube (straighten_boundaries), so rows of quads follow them and only their
+// corners are irregular; a loop that cannot be laid so stays a staircase.
+// Collapsed triangles carry no area: no grid square lands in them.
 #pragma once
 
 #include <vector>
@@ -32,6 +35,8 @@ struct QuadRemesh {
   double grid_spacing = 0.0;      // h in polycube units (edge_length times the polycube's scale)
   int irregular_vertices = 0;     // valence other than 4 (boundary vertices: other than 3)
   int open_edges = 0;             // edges with one quad (only where the input is open)
+  int boundary_loops = 0;         // open boundary loops of the input
+  int straightened_loops = 0;     // of those, laid along grid lines (straighten_boundaries)
 };
 
 // Inputs:

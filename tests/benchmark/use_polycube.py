@@ -8,9 +8,10 @@ face count, our polycube UVs against Smart UV Project (`uv.smart_project`).
 Runs itself inside `blender -b`; polycubes come from `build/polycube deform --labels auto`
 (B0: its published labels). Prints two Markdown tables and writes build/bench/use/results.json.
 Our spacing is set so that our quad count is nearest QuadriFlow's (it only aims at a target).
-Figures: quads share, regular vertices (valence 4 inside, 3 on a boundary) share and the irregular
-count; Hausdorff distance to the input (both ways, sampled at
-vertices, edge midpoints and face centres) over the input's bounding-box diagonal; manifold
+Figures: quads share, regular vertices (valence 4 inside, 3 on a boundary: both meshes counted
+alike) share and the irregular count (how many of them on an open boundary); Hausdorff distance
+to the input (both ways, sampled at vertices, edge midpoints and face centres) over the input's
+bounding-box diagonal; manifold
 and closed (every edge in two faces, walked once each way); UV angle and area distortion
 (area-weighted means of each triangle's singular value ratio and of max(r, 1/r), r its UV area
 share over its area share), islands, seam length.
@@ -199,10 +200,14 @@ def inside_blender(argv):
         return {
             "faces": int(len(sizes)), "vertices": int(used.sum()),
             "quads": float(np.mean(sizes == 4)), "valence4": float(np.mean(regular[used])),
-            "irregular": int(np.sum(used & ~regular)),
+            "irregular": int(np.sum(used & ~regular)), "irregular_boundary": int(np.sum(used & ~regular & on_boundary)),
             "manifold": bool(np.all(uses <= 2) and oriented), "open_edges": int(np.sum(uses == 1)),
             "hausdorff": hausdorff((vertices, indices, sizes), reference) / diagonal,
         }
+
+    def irregular(figures):
+        on_boundary = figures["irregular_boundary"]
+        return f"{figures['irregular']}, {on_boundary} on the boundary" if on_boundary else str(figures["irregular"])
 
     def closed(figures):
         if not figures["manifold"]:
@@ -359,7 +364,7 @@ def inside_blender(argv):
                   f"{row['seconds_ours']:.2f} (+{row['seconds_deform']:.2f} deform) / - |")
             continue
         print(f"TABLE | {row['model']} | {o['faces']} / {q['faces']} | {100 * o['quads']:.1f} / {100 * q['quads']:.1f} | "
-              f"{100 * o['valence4']:.2f} ({o['irregular']}) / {100 * q['valence4']:.2f} ({q['irregular']}) | "
+              f"{100 * o['valence4']:.2f} ({irregular(o)}) / {100 * q['valence4']:.2f} ({irregular(q)}) | "
               f"{o['hausdorff']:.5f} ({row['ours_unrelaxed']['hausdorff']:.5f}) / {q['hausdorff']:.5f} | "
               f"{closed(o)} / {closed(q)} | "
               f"{row['seconds_ours']:.2f} (+{row['seconds_deform']:.2f} deform) / {row['seconds_quadriflow']:.2f} |")

@@ -104,6 +104,33 @@ def test_remesh_makes_a_new_all_quad_object_on_the_surface():
     assert quads.matrix_world == fandisk.matrix_world
 
 
+def test_remesh_lays_an_open_boundary_along_the_grid():
+    # A flat disk is its own polycube (one +Z chart): its round rim becomes a rectangle of grid
+    # lines, whose 4 corners are the only irregular vertices (a staircase has two a step).
+    bpy.ops.mesh.primitive_circle_add(vertices=64, fill_type='TRIFAN')
+    disk = bpy.context.active_object
+    for vertex in disk.data.vertices:  # a gentle saddle for the solver to flatten
+        vertex.co.z = 0.1 * vertex.co.x * vertex.co.y
+    select_only(disk)
+    assert deform(disk, iterations=50) == {'FINISHED'}
+    assert bpy.ops.object.polycube_remesh(mode='FACES', target_faces=400) == {'FINISHED'}
+    data = bpy.context.active_object.data
+    counts, valence = {}, np.zeros(len(data.vertices), dtype=int)
+    for polygon in data.polygons:
+        assert polygon.loop_total == 4
+        for key in polygon.edge_keys:
+            counts[key] = counts.get(key, 0) + 1
+    on_boundary = np.zeros(len(data.vertices), dtype=bool)
+    for (a, b), uses in counts.items():
+        valence[[a, b]] += 1
+        if uses == 1:
+            on_boundary[[a, b]] = True
+    assert on_boundary.sum() > 40
+    irregular = np.where(on_boundary, valence != 3, valence != 4)
+    assert irregular.sum() == 4, irregular.sum()
+    assert np.all(valence[irregular] == 2)
+
+
 def test_remesh_carries_uv_maps():
     sphere = labelled_sphere()  # Blender's UV sphere comes with its UV map "UVMap": u around, v up
     assert deform(sphere, iterations=200) == {'FINISHED'}

@@ -377,6 +377,60 @@ TEST(QuadRemesh, AnOpenBoundaryAcrossTheGridStaysManifold) {
   EXPECT_GT(r.mesh.faces.count(), 2000);
 }
 
+// A flat wavy disk in z = 0, its own polycube (one +Z chart): rings of quads around a fan.
+PolygonMesh wavy_disk(int rings, int sectors) {
+  PolygonMesh disk;
+  disk.vertices.resize(1 + rings * sectors, 3);
+  disk.vertices.row(0).setZero();
+  for (int i = 1; i <= rings; ++i)
+    for (int j = 0; j < sectors; ++j) {
+      const double angle = 2.0 * M_PI * j / sectors, radius = (1.0 + 0.08 * std::sin(3.0 * angle)) * i / rings;
+      disk.vertices.row(1 + (i - 1) * sectors + j) << radius * std::cos(angle), radius * std::sin(angle), 0.0;
+    }
+  auto at = [&](int i, int j) { return 1 + (i - 1) * sectors + (j % sectors); };
+  for (int j = 0; j < sectors; ++j) disk.faces.add({0, at(1, j), at(1, j + 1)});
+  for (int i = 1; i < rings; ++i)
+    for (int j = 0; j < sectors; ++j) disk.faces.add({at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
+  return disk;
+}
+
+TEST(QuadRemesh, AnOpenBoundaryIsLaidStraightAlongTheGrid) {
+  // A round boundary inside one chart becomes a rectangle of grid lines: its four corners are
+  // the only irregular vertices (valence 2 on the boundary), where a staircase has two a step.
+  const PolygonMesh disk = wavy_disk(12, 48);
+  QuadRemeshOptions options;
+  options.edge_length = 0.1;
+  const QuadRemesh r = quad_remesh(disk, disk.vertices, std::vector<int>(disk.faces.count(), 4), options);
+  EXPECT_EQ(r.boundary_loops, 1);
+  EXPECT_EQ(r.straightened_loops, 1);
+  EXPECT_EQ(r.irregular_vertices, 4);
+  EXPECT_GT(r.mesh.faces.count(), 250);
+  std::map<std::pair<int, int>, int> directed;
+  for (int f = 0; f < r.mesh.faces.count(); ++f) {
+    ASSERT_EQ(r.mesh.faces.size(f), 4);
+    for (int k = 0; k < 4; ++k) ++directed[{r.mesh.faces.indices[4 * f + k], r.mesh.faces.indices[4 * f + (k + 1) % 4]}];
+  }
+  std::set<int> boundary;
+  int open = 0;
+  for (const auto& [edge, uses] : directed) {
+    ASSERT_EQ(uses, 1);
+    if (!directed.count({edge.second, edge.first})) boundary.insert(edge.first), ++open;
+  }
+  EXPECT_EQ(open, r.open_edges);
+  // Every vertex on the disk; those of the open edges on its rim (the input's boundary polygon).
+  for (Eigen::Index v = 0; v < r.mesh.vertices.rows(); ++v) {
+    EXPECT_NEAR(r.mesh.vertices(v, 2), 0.0, 1e-12);
+    const double angle = std::atan2(r.mesh.vertices(v, 1), r.mesh.vertices(v, 0));
+    EXPECT_LE(r.mesh.vertices.row(v).norm(), (1.0 + 0.08 * std::sin(3.0 * angle)) + 1e-9);
+  }
+  int on_rim = 0;
+  for (int v : boundary) {
+    const double angle = std::atan2(r.mesh.vertices(v, 1), r.mesh.vertices(v, 0));
+    on_rim += r.mesh.vertices.row(v).norm() > 0.97 * (1.0 + 0.08 * std::sin(3.0 * angle));
+  }
+  EXPECT_EQ(on_rim, static_cast<int>(boundary.size()));
+}
+
 TEST(QuadRemesh, ClearErrors) {
   const test_meshes::LabelledMesh block = l_block();
   QuadRemeshOptions options;
