@@ -33,7 +33,7 @@ deps:
 build: deps
 	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=$(PYTHON) --log-level=WARNING
 	cmake --build $(BUILD) -j $(JOBS)
-	cp $(BUILD)/polycube_native*.so addon/
+	cp $(BUILD)/polycube_native*.so $(wildcard $(BUILD)/polycube_cholmod.so) addon/
 
 # Real models from Debian's libcgal-demo, unpacked once (not committed).
 data: $(MESHES)/fandisk.off
@@ -65,7 +65,7 @@ package: build
 	cp -r addon $(BUILD)/package/polycube
 	cp blender_manifest.toml README.md $(BUILD)/package/polycube/
 	rm -rf $(BUILD)/package/polycube/lib
-	$(PYTHON) packaging/bundle_libraries.py $(BUILD)/package/polycube/polycube_native*.so $(BUILD)/package/polycube/lib
+	$(PYTHON) packaging/bundle_libraries.py $(BUILD)/package/polycube/polycube_*.so $(BUILD)/package/polycube/lib
 	find $(BUILD)/package -name __pycache__ -prune -exec rm -rf {} +
 	cd $(BUILD)/package && zip -qr ../../dist/polycube-$(VERSION).zip polycube
 	@echo "Wrote dist/polycube-$(VERSION).zip"

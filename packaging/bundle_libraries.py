@@ -1,14 +1,15 @@
 #!/usr/bin/env python3
-"""Copy the shared libraries a native module needs into a folder beside it, so the
+"""Copy the shared libraries native modules need into a folder beside them, so the
 add-on runs on a Linux that never saw the build's distribution.
 
-Every library `ldd` resolves for the module, except those any Linux with Blender
+Every library `ldd` resolves for the modules (the Python module, and the CHOLMOD
+plugin it loads when a mesh is large), except those any Linux with Blender
 has (glibc's, libstdc++, libgcc_s and the loader), is copied into FOLDER under its
 soname (symlinks followed). The module finds them through its `$ORIGIN/lib`
 DT_RPATH (CMakeLists.txt), which the loader also searches for the libraries'
 own dependencies, so the copies need no change.
 
-    bundle_libraries.py MODULE.so FOLDER
+    bundle_libraries.py MODULE.so... FOLDER
 """
 
 import os
@@ -37,18 +38,20 @@ def needed_libraries(module):
     return found
 
 
-def main(module, folder):
+def main(modules, folder):
     os.makedirs(folder, exist_ok=True)
-    bundled = []
-    for soname, path in needed_libraries(module):
-        if SYSTEM.match(soname) or os.path.dirname(os.path.abspath(path)) == os.path.abspath(folder):
-            continue
-        shutil.copy2(os.path.realpath(path), os.path.join(folder, soname))
-        bundled.append(soname)
+    bundled = set()
+    for module in modules:
+        for soname, path in needed_libraries(module):
+            if (SYSTEM.match(soname) or soname in bundled
+                    or os.path.dirname(os.path.abspath(path)) == os.path.abspath(folder)):
+                continue
+            shutil.copy2(os.path.realpath(path), os.path.join(folder, soname))
+            bundled.add(soname)
     print(f"Bundled {len(bundled)} libraries into {folder}: {' '.join(sorted(bundled))}")
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 3:
+    if len(sys.argv) < 3:
         raise SystemExit(__doc__)
-    main(*sys.argv[1:])
+    main(sys.argv[1:-1], sys.argv[-1])

@@ -720,11 +720,16 @@ PolygonMesh read_mesh(const std::string& path) {
 
 PolygonMesh parse_mesh(const std::string& name, const std::string& data) {
   const std::string ext = lower(std::filesystem::path(name).extension().string());
-  if (ext == ".ply") return read_ply(name, data);
-  std::string_view text = text_of(name, data);
-  if (ext == ".off") return read_off(name, text);
-  if (ext == ".obj") return read_obj(name, text);
-  fail(name, "unknown mesh format '" + ext + "', expected .off, .obj or .ply");
+  PolygonMesh mesh;
+  if (ext == ".ply") mesh = read_ply(name, data);
+  else if (ext == ".off") mesh = read_off(name, text_of(name, data));
+  else if (ext == ".obj") mesh = read_obj(name, text_of(name, data));
+  else fail(name, "unknown mesh format '" + ext + "', expected .off, .obj or .ply");
+  // The readers grow the face lists as they read (up to twice the size); the
+  // mesh lives as long as the program.
+  mesh.faces.indices.shrink_to_fit();
+  mesh.faces.offsets.shrink_to_fit();
+  return mesh;
 }
 
 }  // namespace polycube

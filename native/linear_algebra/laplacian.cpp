@@ -32,7 +32,7 @@ Laplacian::Laplacian(int vertex_count, const Triangles& triangles) {
   for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
     for (int k = 0; k < 3; ++k) {
       const int v = triangles(t, (k + 1) % 3), w = triangles(t, (k + 2) % 3);
-      slots_[3 * t + k] = {slot(v, w), slot(w, v), diagonal_slots_[v], diagonal_slots_[w]};
+      slots_[3 * t + k] = {slot(v, w), slot(w, v)};
     }
   }
 }
@@ -40,13 +40,14 @@ Laplacian::Laplacian(int vertex_count, const Triangles& triangles) {
 double Laplacian::assemble(const CotangentWeights& weights, double relative_shift) {
   double* values = matrix_.valuePtr();
   std::fill(values, values + matrix_.nonZeros(), 0.0);
+  const int* rows = matrix_.innerIndexPtr();
   const double* c = weights.data();  // row-major: corner k of triangle t is 3t+k, as in slots_
   for (size_t e = 0; e < slots_.size(); ++e) {
-    const std::array<int, 4>& s = slots_[e];
-    values[s[0]] -= c[e];
-    values[s[1]] -= c[e];
-    values[s[2]] += c[e];
-    values[s[3]] += c[e];
+    const auto [vw, wv] = slots_[e];
+    values[vw] -= c[e];
+    values[wv] -= c[e];
+    values[diagonal_slots_[rows[vw]]] += c[e];
+    values[diagonal_slots_[rows[wv]]] += c[e];
   }
   if (relative_shift == 0.0 || diagonal_slots_.empty()) return 0.0;
   double mean = 0.0;

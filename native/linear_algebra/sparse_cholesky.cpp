@@ -2,11 +2,8 @@
 
 #include <Eigen/SparseCholesky>
 
+#include "linear_algebra/supernodal_factor.h"
 #include "mesh/mesh.h"
-
-#ifdef POLYCUBE_WITH_CHOLMOD
-#include <Eigen/CholmodSupport>
-#endif
 
 namespace polycube {
 
@@ -32,9 +29,7 @@ class Simplicial : public Eigen::SimplicialLDLT<Matrix, Eigen::Lower, Eigen::AMD
 
 struct SparseCholesky::Backends {
   std::unique_ptr<Simplicial> simplicial;
-#ifdef POLYCUBE_WITH_CHOLMOD
-  std::unique_ptr<Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>>> supernodal;
-#endif
+  std::unique_ptr<SupernodalFactor> supernodal;  // null without the plugin (supernodal_factor.h)
 };
 
 SparseCholesky::SparseCholesky() : backends_(std::make_unique<Backends>()) {}
@@ -45,32 +40,20 @@ void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& matrix, bool reu
   released_backend_ = nullptr;
   ordering_.resize(0);
   backends_ = std::make_unique<Backends>();
-#ifdef POLYCUBE_WITH_CHOLMOD
   if (matrix.rows() >= kSupernodalThreshold) {
-    backends_->supernodal = std::make_unique<Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>>>();
-    // CHOLMOD prints its warnings ("not positive definite") on stdout, where
-    // the program writes its JSON report; a failure is handled below.
-    backends_->supernodal->cholmod().print = 0;
-    if (!reused) {
-      backends_->supernodal->cholmod().nmethods = 1;
-      backends_->supernodal->cholmod().method[0].ordering = CHOLMOD_AMD;
-    }
-    backends_->supernodal->analyzePattern(matrix);
-    if (backends_->supernodal->info() == Eigen::Success) return;
+    backends_->supernodal = make_supernodal_factor();
+    if (backends_->supernodal && backends_->supernodal->analyze(matrix, reused)) return;
     backends_->supernodal.reset();
   }
-#endif
   backends_->simplicial = std::make_unique<Simplicial>();
   backends_->simplicial->analyzePattern(matrix);
   ordering_ = backends_->simplicial->permutationPinv();
 }
 
 void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& matrix, const Ordering& ordering) {
-  bool supernodal = false;
-#ifdef POLYCUBE_WITH_CHOLMOD
-  supernodal = matrix.rows() >= kSupernodalThreshold;
-#endif
-  if (supernodal || ordering.size() != matrix.rows()) return analyze(matrix);
+  // Only the simplicial analysis takes an ordering; a large system may go to
+  // the supernodal factorisation.
+  if (matrix.rows() >= kSupernodalThreshold || ordering.size() != matrix.rows()) return analyze(matrix);
   rows_ = matrix.rows();
   released_backend_ = nullptr;
   ordering_ = ordering;
@@ -81,31 +64,24 @@ void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& matrix, const Or
 
 void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& matrix) {
   ++factorizations_;
-#ifdef POLYCUBE_WITH_CHOLMOD
   if (backends_->supernodal) {
-    backends_->supernodal->factorize(matrix);
-    if (backends_->supernodal->info() == Eigen::Success) return;
+    if (backends_->supernodal->factorize(matrix)) return;
     backends_->supernodal.reset();  // not positive definite: LDLT from now on
     backends_->simplicial = std::make_unique<Simplicial>();
     backends_->simplicial->analyzePattern(matrix);
   }
-#endif
   backends_->simplicial->factorize(matrix);
   if (backends_->simplicial->info() != Eigen::Success)
     throw Error("the sparse factorisation of the Laplacian failed (the mesh may be badly degenerate)");
 }
 
 Eigen::MatrixX3d SparseCholesky::solve(const Eigen::MatrixX3d& rhs) const {
-#ifdef POLYCUBE_WITH_CHOLMOD
   if (backends_->supernodal) return backends_->supernodal->solve(rhs);
-#endif
   return backends_->simplicial->solve(rhs);
 }
 
 Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& rhs) const {
-#ifdef POLYCUBE_WITH_CHOLMOD
   if (backends_->supernodal) return backends_->supernodal->solve(rhs);
-#endif
   return backends_->simplicial->solve(rhs);
 }
 
@@ -116,9 +92,7 @@ void SparseCholesky::release() {
 
 const char* SparseCholesky::backend() const {
   if (released_backend_) return released_backend_;
-#ifdef POLYCUBE_WITH_CHOLMOD
   if (backends_->supernodal) return "cholmod-supernodal";
-#endif
   return "eigen-simplicial";
 }
 

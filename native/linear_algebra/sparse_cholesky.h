@@ -1,6 +1,7 @@
 // The sparse factorisation behind every solve: Eigen's simplicial LDLT for
 // small systems, CHOLMOD's supernodal Cholesky (BLAS level 3, both cores)
-// for large ones, where it factorises several times faster (see `make bench`).
+// for large ones, where it factorises several times faster (see `make bench`),
+// from a plugin loaded when the first large system comes (supernodal_factor.h).
 //
 // The symbolic analysis is done once per sparsity pattern; factorize() may be
 // called again with new values (the `current` variant does every iteration).
@@ -18,7 +19,7 @@ namespace polycube {
 
 class SparseCholesky {
  public:
-  // Systems with at least this many unknowns use CHOLMOD when it is built in.
+  // Systems with at least this many unknowns use CHOLMOD when its plugin loads.
   static constexpr int kSupernodalThreshold = 50'000;
 
   SparseCholesky();

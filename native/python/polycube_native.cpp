@@ -26,6 +26,7 @@
 #include "mesh/triangulate.h"
 #include "mesh/unit_box.h"
 #include "labels/validate_labels.h"
+#include "linear_algebra/supernodal_factor.h"
 #include "io/deform_report.h"
 #include "io/labels_io.h"
 #include "io/labels_report.h"
@@ -464,6 +465,10 @@ bad input.)");
 "closed_components", "inward_components", "inward"}, and with labels "area_against_labels"
 (share of the area facing away from its label) and "labels_opposite" (most of it does: labels
 made for the other winding; flip_labels fixes them).)");
+  m.def("supernodal_available", &supernodal_available,
+        R"(Whether CHOLMOD's plugin (polycube_cholmod.so beside this module) loads; it is loaded
+the first time a mesh of 50,000 vertices or more is solved, or by this call. Without it large
+meshes factorise with Eigen's simplicial LDLT (the report's "solver" says which).)");
   m.def("flip_labels", &flip_labels_py, py::arg("labels"),
         "Every label turned to its opposite axis (+X <-> -X, ...), -1 kept.");
 

@@ -15,6 +15,7 @@
 #include "labels/nearest_labels.h"
 #include "deform/quality.h"
 #include "mesh/triangulate.h"
+#include "mesh/union_find.h"
 #include "io/read_mesh.h"
 #include "test_meshes.h"
 
@@ -122,6 +123,50 @@ TEST(ChartPlanes, SameChartsReuseTheirOrderings) {
   again.factorize(L);
   EXPECT_EQ(again.factorizations(), 6);
   EXPECT_EQ(again.solve(L * s.x), expected);
+}
+
+// Each axis' system P^T L P is built without a triplet list (chart_planes.cpp);
+// it must be the very matrix setFromTriplets makes of L's entries, to the
+// bit, or the factors and every result after them would change: the same
+// solve from that matrix, here, gives the same positions exactly.
+TEST(ChartPlanes, ReducedSystemsAreTheTripletSumsBitForBit) {
+  const Block s = noisy_l_block(0.05);
+  const Eigen::SparseMatrix<double> L = shifted_laplacian(s);
+  const int n = static_cast<int>(s.x.rows());
+  ChartPlanes planes(n, s.triangles, s.labels);
+  planes.factorize(L);
+  const Eigen::MatrixX3d rhs = L * s.x;
+  const Vertices solved = planes.solve(rhs);
+  for (int axis = 0; axis < 3; ++axis) {
+    // The charts of this axis, numbered by their first vertex.
+    UnionFind sets(n);
+    for (Eigen::Index t = 0; t < s.triangles.rows(); ++t)
+      if (s.labels[t] / 2 == axis) {
+        sets.join(s.triangles(t, 0), s.triangles(t, 1));
+        sets.join(s.triangles(t, 0), s.triangles(t, 2));
+      }
+    std::vector<int> of_root(n, -1), unknown(n);
+    int m = 0;
+    for (int v = 0; v < n; ++v) {
+      const int r = sets.root(v);
+      if (of_root[r] < 0) of_root[r] = m++;
+      unknown[v] = of_root[r];
+    }
+    std::vector<Eigen::Triplet<double>> entries;
+    for (int column = 0; column < L.outerSize(); ++column)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(L, column); it; ++it)
+        entries.emplace_back(unknown[it.row()], unknown[column], it.value());
+    Eigen::SparseMatrix<double> reduced(m, m);
+    reduced.setFromTriplets(entries.begin(), entries.end());
+    ASSERT_LT(m, n);
+    SparseCholesky cholesky;
+    cholesky.analyze(reduced);
+    cholesky.factorize(reduced);
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(m);
+    for (int v = 0; v < n; ++v) b[unknown[v]] += rhs(v, axis);
+    const Eigen::VectorXd y = cholesky.solve(b);
+    for (int v = 0; v < n; ++v) ASSERT_EQ(solved(v, axis), y[unknown[v]]) << "axis " << axis << ", vertex " << v;
+  }
 }
 
 // Labels that ask for the impossible (the elephant's nearest-axis labels:

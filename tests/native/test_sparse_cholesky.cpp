@@ -2,6 +2,7 @@
 
 #include "linear_algebra/laplacian.h"
 #include "linear_algebra/sparse_cholesky.h"
+#include "linear_algebra/supernodal_factor.h"
 #include "mesh/triangulate.h"
 #include "test_meshes.h"
 
@@ -19,6 +20,15 @@ SparseMatrix shifted_laplacian(const PolygonMesh& mesh) {
 double relative_residual(const SparseMatrix& a, const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& b) {
   return (a * x - b).norm() / b.norm();
 }
+
+#ifdef POLYCUBE_WITH_CHOLMOD
+// The plugin is built beside this program (CMakeLists.txt): it must load,
+// or large systems would silently take the slow factorisation.
+TEST(SparseCholesky, TheCholmodPluginLoads) {
+  EXPECT_TRUE(supernodal_available());
+  EXPECT_NE(make_supernodal_factor(), nullptr);
+}
+#endif
 
 TEST(SparseCholesky, SmallAndLargeSystemsSolveAccurately) {
   for (const auto& [mesh, expected] : {std::pair{test_meshes::uv_sphere(32, 16), "eigen-simplicial"},

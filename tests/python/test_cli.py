@@ -1,6 +1,7 @@
 """The command-line program: formats, labels files, the report, and failures
 that print one line and leave no partial output behind."""
 import json
+import os
 import subprocess
 
 import numpy as np
@@ -70,6 +71,18 @@ def test_b0_with_its_labeling(program):
     assert result.returncode == 0, result.stderr
     report = json.loads(result.stdout)
     assert report["converged"] and report["flipped_faces"] == 0 and report["triangles"] == 19964
+
+
+def test_a_small_mesh_loads_no_cholmod(program, sphere_off, tmp_path):
+    # CHOLMOD, OpenBLAS and gfortran cost about 5 MiB and 20 ms at start-up;
+    # they come in a plugin loaded for large systems only (supernodal_factor.h).
+    env = dict(os.environ, LD_DEBUG="files")
+    result = subprocess.run([program, "deform", sphere_off, "--iterations", "20", "--output", tmp_path / "out.obj"],
+                            capture_output=True, text=True, timeout=300, env=env)
+    assert result.returncode == 0, result.stderr[-2000:]
+    assert "file=libgomp" in result.stderr  # the loader's log is there
+    for library in ("libcholmod", "libopenblas", "libgfortran", "polycube_cholmod"):
+        assert library not in result.stderr, library
 
 
 @pytest.mark.parametrize("make_args, words", [

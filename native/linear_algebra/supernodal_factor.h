@@ -1,0 +1,38 @@
+// CHOLMOD's supernodal Cholesky behind a small interface, loaded at run time
+// from a plugin beside the program or module (polycube_cholmod.so, built from
+// cholmod/supernodal_cholmod.cpp) the first time a system is large enough to
+// use it. CHOLMOD brings OpenBLAS, LAPACK, METIS and gfortran with it: about
+// 5 MiB and 20 ms at start-up that meshes below SparseCholesky's threshold
+// (most of what users deform) never use.
+//
+// Without the plugin (a build without CHOLMOD, or a copy of the program
+// without it) make_supernodal_factor() returns null and SparseCholesky
+// factorises with Eigen's simplicial LDLT, as a build without CHOLMOD does.
+#pragma once
+
+#include <Eigen/SparseCore>
+#include <memory>
+
+namespace polycube {
+
+class SupernodalFactor {
+ public:
+  virtual ~SupernodalFactor() = default;
+  // `reused`: choose the ordering from AMD and METIS (more analysis, faster
+  // factorisations); otherwise AMD alone. False when the analysis failed.
+  virtual bool analyze(const Eigen::SparseMatrix<double>& matrix, bool reused) = 0;
+  // False when the matrix is not positive definite (silently: CHOLMOD's own
+  // warning would go to stdout, where the program writes its report).
+  virtual bool factorize(const Eigen::SparseMatrix<double>& matrix) = 0;
+  virtual Eigen::MatrixX3d solve(const Eigen::MatrixX3d& rhs) const = 0;
+  virtual Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const = 0;
+};
+
+// A new factor from the plugin, or null when it cannot be loaded. The plugin
+// is loaded once, on the first call, and stays loaded.
+std::unique_ptr<SupernodalFactor> make_supernodal_factor();
+
+// Whether the plugin loads (loading it if it has not been yet).
+bool supernodal_available();
+
+}  // namespace polycube
