@@ -37,12 +37,24 @@ constexpr int kRerunRounds = 6;
 // kept. The callback sees a kept run once, as the iteration after the last
 // one it saw (DeformResult::second_run_iterations counts the further runs'
 // own iterations), and the faces relabelled join `relabelled_faces`.
-bool rerun_collapsed(const PolygonMesh& mesh, const std::vector<int>& labels, const DeformOptions& options,
-                     const IterationCallback& callback, DeformResult& result) {
+// What the further runs need of the mesh, built once for all of them.
+struct RerunMesh {
+  explicit RerunMesh(const PolygonMesh& mesh)
+      : triangulation(triangulate(mesh.vertices, mesh.faces)),
+        adjacency(mesh_adjacency(mesh.faces, static_cast<int>(mesh.vertices.rows()))),
+        neighbours(face_neighbours(adjacency, mesh.faces.count())) {}
+  Triangulation triangulation;
+  MeshAdjacency adjacency;
+  std::vector<std::vector<int>> neighbours;
+};
+
+bool rerun_collapsed(const PolygonMesh& mesh, const RerunMesh& shared, const std::vector<int>& labels,
+                     const DeformOptions& options, const IterationCallback& callback, DeformResult& result) {
   if (result.stopped || !result.converged || result.figures.collapsed_faces == 0 || result.figures.flipped_faces > 0 ||
       (options.stop_requested && options.stop_requested()))
     return false;
-  const Triangulation triangulation = triangulate(mesh.vertices, mesh.faces);
+  const Triangulation& triangulation = shared.triangulation;
+  const MeshAdjacency& adjacency = shared.adjacency;
   std::vector<int> triangle_labels(triangulation.face_of_triangle.size());
   for (size_t t = 0; t < triangle_labels.size(); ++t)
     triangle_labels[t] = result.labels[triangulation.face_of_triangle[t]];
@@ -51,10 +63,8 @@ bool rerun_collapsed(const PolygonMesh& mesh, const std::vector<int>& labels, co
   std::vector<char> collapsed(mesh.faces.count(), 0);
   for (size_t t = 0; t < states.collapsed.size(); ++t)
     if (states.collapsed[t]) collapsed[triangulation.face_of_triangle[t]] = 1;
-  const MeshAdjacency adjacency = mesh_adjacency(mesh.faces, static_cast<int>(mesh.vertices.rows()));
   std::vector<int> moved = result.labels;
-  const std::vector<int> changed =
-      relabel_collapsed_faces(face_neighbours(adjacency, mesh.faces.count()), collapsed, moved);
+  const std::vector<int> changed = relabel_collapsed_faces(shared.neighbours, collapsed, moved);
   if (changed.empty()) return false;
   const int score = violation_score(adjacency, result.labels);
   if (violation_score(adjacency, moved) > score) {
@@ -132,9 +142,12 @@ DeformResult deform(const PolygonMesh& input, const std::vector<int>& labels, co
   DeformOptions unit_options = options;
   if (options.start.size() > 0) unit_options.start = unit.box().to_unit(options.start);
   DeformResult result = deform_in_unit_box(mesh, labels, unit_options, unit_callback);
-  if (options.variant == Variant::kRobust && options.relabel_collapsed)
-    for (int round = 0; round < kRerunRounds && rerun_collapsed(mesh, labels, unit_options, unit_callback, result);)
-      ++round;
+  if (options.variant == Variant::kRobust && options.relabel_collapsed && result.converged &&
+      result.figures.collapsed_faces > 0) {
+    const RerunMesh shared(mesh);
+    for (int round = 0; round < kRerunRounds; ++round)
+      if (!rerun_collapsed(mesh, shared, labels, unit_options, unit_callback, result)) break;
+  }
   result.positions = unit.box().from_unit(result.positions, mesh.vertices, input.vertices);
   // The report never contradicts itself: a run that leaves faces above the
   // tolerance or folded is not converged, whatever the figures' rounding said.

@@ -372,6 +372,24 @@ TEST(RelabelCollapsedFaces, TakesTheNeighboursLabelNeverTheOpposite) {
   EXPECT_EQ(row, (std::vector<int>{4, 2, 2, 2}));
 }
 
+// A model's automatic labels deformed with one run and with the further runs
+// of the robust variant (docs/design.md section 2.6, stage 8).
+struct OneAndFurther {
+  PolygonMesh mesh;
+  DeformResult first, further;
+};
+OneAndFurther one_and_further_runs(const std::string& name) {
+  OneAndFurther runs{read_mesh(cgal_mesh(name)), {}, {}};
+  const std::vector<int> labels = auto_labels(runs.mesh);
+  DeformOptions once;
+  once.relabel_collapsed = false;
+  runs.first = deform(runs.mesh, labels, once);
+  runs.further = deform(runs.mesh, labels);
+  print_figures(name + ", one run", runs.first);
+  print_figures(name + ", further runs", runs.further);
+  return runs;
+}
+
 // The robust variant's second run (docs/design.md section 2.6, stage 8): the
 // eight's automatic labels leave 6 faces collapsed on its hole's rim; with
 // them relabelled nothing collapses, and the report says which faces changed
@@ -379,13 +397,8 @@ TEST(RelabelCollapsedFaces, TakesTheNeighboursLabelNeverTheOpposite) {
 TEST(SecondRun, RelabelledCollapsedFacesFindRoomOnTheEight) {
   const std::string path = cgal_mesh("eight");
   if (!exists(path)) GTEST_SKIP() << path << " is missing: run `make data` (Debian libcgal-demo)";
-  const PolygonMesh mesh = read_mesh(path);
-  const std::vector<int> labels = auto_labels(mesh);
-  DeformOptions once;
-  once.relabel_collapsed = false;
-  const DeformResult first = deform(mesh, labels, once), second = deform(mesh, labels);
-  print_figures("eight, one run", first);
-  print_figures("eight, second run", second);
+  const OneAndFurther runs = one_and_further_runs("eight");
+  const DeformResult &first = runs.first, &second = runs.further;
   ASSERT_TRUE(first.converged);
   EXPECT_GT(first.figures.collapsed_faces, 0);
   EXPECT_TRUE(first.relabelled_faces.empty());
@@ -408,13 +421,8 @@ TEST(SecondRun, RelabelledCollapsedFacesFindRoomOnTheEight) {
 TEST(SecondRun, RepairedRelabellingOpensTheElephant) {
   const std::string path = cgal_mesh("elephant");
   if (!exists(path)) GTEST_SKIP() << path << " is missing: run `make data` (Debian libcgal-demo)";
-  const PolygonMesh mesh = read_mesh(path);
-  const std::vector<int> labels = auto_labels(mesh);
-  DeformOptions once;
-  once.relabel_collapsed = false;
-  const DeformResult first = deform(mesh, labels, once), further = deform(mesh, labels);
-  print_figures("elephant, one run", first);
-  print_figures("elephant, further runs", further);
+  const OneAndFurther runs = one_and_further_runs("elephant");
+  const DeformResult &first = runs.first, &further = runs.further;
   ASSERT_TRUE(first.converged);
   EXPECT_GT(first.figures.collapsed_area, 0.025);
   EXPECT_TRUE(further.converged);
@@ -422,5 +430,5 @@ TEST(SecondRun, RepairedRelabellingOpensTheElephant) {
   EXPECT_LE(further.figures.folded_edges, further.input_folded_edges);
   EXPECT_LT(further.figures.collapsed_area, 0.6 * first.figures.collapsed_area);
   EXPECT_GT(further.second_run_iterations, 0);
-  EXPECT_TRUE(validate_labels(mesh, further.labels).valid());
+  EXPECT_TRUE(validate_labels(runs.mesh, further.labels).valid());
 }
