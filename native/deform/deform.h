@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "mesh/mesh.h"
 #include "deform/quality.h"
+#include "mesh/mesh.h"
 
 namespace polycube {
 
@@ -85,6 +85,11 @@ struct DeformOptions {
   // keep the run that collapses less, and repeat while one is kept (at most
   // six further runs).
   bool relabel_collapsed = true;
+  // Robust variant: a flattening that collapses more than this share of the
+  // area is refused (the continuous stage goes on instead). A run that ends
+  // without an exact polycube is run once more with the share raised to
+  // kLastResortCollapsedShare (docs/design.md section 2.6, stage 9).
+  double max_collapsed_share = 0.12;
   // Polled after every iteration of those further runs, which the callback
   // does not see: returning true stops them, keeping the run before (Esc in
   // Blender). The callback stops the first run.
@@ -101,7 +106,7 @@ struct PhaseSeconds {
 // and the attempts at flattening. The other variants count every iteration
 // as continuous.
 struct StageCost {
-  int count = 0;        // iterations, or calls for `flatten` (each a few solves: flatten_attempts)
+  int count = 0;  // iterations, or calls for `flatten` (each a few solves: flatten_attempts)
   double seconds = 0.0;
 };
 struct StageSeconds {
@@ -123,9 +128,9 @@ struct DeformResult {
   // more faces than the labels did at the start; then the latest state that
   // does neither (0: the input).
   int kept_iteration = 0;
-  bool converged = false;   // largest normal deviation below the tolerance, and not degenerate (see deformation.h)
-  bool stopped = false;     // the callback asked to stop
-  std::string failure;      // why the solver broke off after some iterations; empty otherwise
+  bool converged = false;  // largest normal deviation below the tolerance, and not degenerate (see deformation.h)
+  bool stopped = false;    // the callback asked to stop
+  std::string failure;     // why the solver broke off after some iterations; empty otherwise
   int unlabelled_faces = 0;
   int triangles = 0;
   // Polygon faces (ids into the input's faces, ascending) that end above the
@@ -157,8 +162,8 @@ struct DeformResult {
     bool kept = false;
   };
   std::vector<FlattenAttempt> flatten_attempts;
-  int factorizations = 0;   // numeric factorisations of a Laplacian
-  std::string solver;       // the factorisation used (sparse_cholesky.h)
+  int factorizations = 0;  // numeric factorisations of a Laplacian
+  std::string solver;      // the factorisation used (sparse_cholesky.h)
   PhaseSeconds seconds;
   StageSeconds stages;
   // With DeformOptions::time_references: one back-substitution (3 right-hand
@@ -180,7 +185,7 @@ DeformResult deform(const PolygonMesh& mesh, const std::vector<int>& labels, con
 
 // deform() itself, on a mesh already in the unit box (deform_any_scale.cpp
 // moves it there and back).
-DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>& labels,
-                                const DeformOptions& options, const IterationCallback& callback);
+DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>& labels, const DeformOptions& options,
+                                const IterationCallback& callback);
 
 }  // namespace polycube

@@ -4,6 +4,7 @@
 // robust variant's second run with collapsed faces relabelled is here too:
 // it wraps whole runs.
 #include <algorithm>
+#include <memory>
 
 #include "deform/deform.h"
 #include "deform/quality.h"
@@ -28,6 +29,12 @@ constexpr int kRepairMoves = 200;
 // Stage 8 runs again while a run is kept, at most this many times: each
 // round's polycube shows the collapsed faces the last relabelling left.
 constexpr int kRerunRounds = 6;
+// Stage 9 (docs/design.md section 2.6): a run that ends without an exact
+// polycube is run once more, its flattening refused only above this share
+// of the area collapsed. An exact polycube with holes beats no polycube
+// (such a run returns its best state, often the input), and the further
+// runs of stage 8 then reopen what they can.
+constexpr double kLastResortCollapsedShare = 0.5;
 
 // Stage 8 (docs/design.md section 2.6): an exact polycube that collapsed
 // faces is run once more from the input, its collapsed faces relabelled
@@ -47,6 +54,51 @@ struct RerunMesh {
   MeshAdjacency adjacency;
   std::vector<std::vector<int>> neighbours;
 };
+
+// A run the caller does not see (its iterations start again from the
+// input, and a caller that keeps every iteration, as shape keys, would get a
+// run it may not keep); only `stop_requested` reaches it. Not converged
+// unless it is an exact polycube with nothing turned over and no more edges
+// folded than the input's.
+DeformResult silent_run(const PolygonMesh& mesh, const std::vector<int>& labels, const DeformOptions& options) {
+  IterationCallback stop_only;
+  if (options.stop_requested)
+    stop_only = [&options](int, const Vertices&, const Figures&) { return !options.stop_requested(); };
+  DeformResult run = deform_in_unit_box(mesh, labels, options, stop_only);
+  run.converged = !run.stopped && run.converged && run.figures.flipped_faces == 0 &&
+                  run.figures.folded_edges <= run.input_folded_edges;
+  return run;
+}
+
+// `again` (a silent run) replaces `result`: to the caller it is one more
+// iteration, seen once by the callback, its own iterations counted in
+// `second_run_iterations`; its figures against the labels the caller gave.
+void keep_as_next_iteration(const PolygonMesh& mesh, const Triangulation& triangulation, const std::vector<int>& labels,
+                            const IterationCallback& callback, DeformResult again, DeformResult& result) {
+  const int offset = result.iterations;
+  again.seconds.total += result.seconds.total;
+  std::vector<int> given = labels;
+  const std::vector<int> nearest = nearest_labels(mesh);
+  for (size_t f = 0; f < given.size(); ++f)
+    if (given[f] == kUnlabelled) given[f] = nearest[f];
+  std::vector<int> triangle_labels(triangulation.face_of_triangle.size());
+  for (size_t t = 0; t < triangle_labels.size(); ++t) triangle_labels[t] = given[triangulation.face_of_triangle[t]];
+  again.given_labels_figures =
+      QualityMeasure(mesh.vertices, triangulation.triangles, triangle_labels).measure(again.positions);
+  again.second_run_iterations = result.second_run_iterations + again.iterations;
+  again.iterations = again.kept_iteration = offset + 1;
+  if (again.flat_iteration > 0) again.flat_iteration = offset + 1;
+  again.factorizations += result.factorizations;
+  again.unlabelled_faces = result.unlabelled_faces;  // the silent run was given them filled
+  std::vector<DeformResult::FlattenAttempt> attempts = result.flatten_attempts;
+  for (DeformResult::FlattenAttempt attempt : again.flatten_attempts) {
+    attempt.iteration = offset + 1;
+    attempts.push_back(attempt);
+  }
+  again.flatten_attempts = std::move(attempts);
+  result = std::move(again);
+  if (callback) callback(result.iterations, result.positions, result.figures);
+}
 
 bool rerun_collapsed(const PolygonMesh& mesh, const RerunMesh& shared, const std::vector<int>& labels,
                      const DeformOptions& options, const IterationCallback& callback, DeformResult& result) {
@@ -80,19 +132,10 @@ bool rerun_collapsed(const PolygonMesh& mesh, const RerunMesh& shared, const std
     if (violation_score(adjacency, moved) > score) return false;
   }
 
-  // Silent: its iterations start again from the input, and a caller that
-  // keeps every iteration (shape keys) would get a run it may not keep.
-  const int offset = result.iterations;
-  IterationCallback stop_only;
-  if (options.stop_requested)
-    stop_only = [&options](int, const Vertices&, const Figures&) { return !options.stop_requested(); };
-  DeformResult again = deform_in_unit_box(mesh, moved, options, stop_only);
-  const bool better = !again.stopped && again.converged && again.figures.flipped_faces == 0 &&
-                      again.figures.folded_edges <= again.input_folded_edges &&
-                      again.figures.collapsed_area < result.figures.collapsed_area;
-  again.seconds.total += result.seconds.total;
+  DeformResult again = silent_run(mesh, moved, options);
+  const bool better = again.converged && again.figures.collapsed_area < result.figures.collapsed_area;
   if (!better) {
-    result.seconds.total = again.seconds.total;
+    result.seconds.total += again.seconds.total;
     return false;
   }
   std::vector<int> relabelled = result.relabelled_faces;
@@ -101,29 +144,7 @@ bool rerun_collapsed(const PolygonMesh& mesh, const RerunMesh& shared, const std
   std::sort(relabelled.begin(), relabelled.end());
   relabelled.erase(std::unique(relabelled.begin(), relabelled.end()), relabelled.end());
   again.relabelled_faces = std::move(relabelled);
-  // Against the labels the caller gave, not the second run's.
-  std::vector<int> given = labels;
-  const std::vector<int> nearest = nearest_labels(mesh);
-  for (size_t f = 0; f < given.size(); ++f)
-    if (given[f] == kUnlabelled) given[f] = nearest[f];
-  for (size_t t = 0; t < triangle_labels.size(); ++t) triangle_labels[t] = given[triangulation.face_of_triangle[t]];
-  again.given_labels_figures =
-      QualityMeasure(mesh.vertices, triangulation.triangles, triangle_labels).measure(again.positions);
-  // To the caller the second run is one more iteration (below).
-  again.second_run_iterations = result.second_run_iterations + again.iterations;
-  again.iterations = again.kept_iteration = offset + 1;
-  if (again.flat_iteration > 0) again.flat_iteration = offset + 1;
-  again.factorizations += result.factorizations;
-  again.unlabelled_faces = result.unlabelled_faces;  // the second run was given them filled
-  std::vector<DeformResult::FlattenAttempt> attempts = result.flatten_attempts;
-  for (DeformResult::FlattenAttempt attempt : again.flatten_attempts) {
-    attempt.iteration = offset + 1;
-    attempts.push_back(attempt);
-  }
-  again.flatten_attempts = std::move(attempts);
-  result = std::move(again);
-  // The kept second run is the last iteration the caller sees.
-  if (callback) callback(result.iterations, result.positions, result.figures);
+  keep_as_next_iteration(mesh, shared.triangulation, labels, callback, std::move(again), result);
   return true;
 }
 
@@ -142,11 +163,25 @@ DeformResult deform(const PolygonMesh& input, const std::vector<int>& labels, co
   DeformOptions unit_options = options;
   if (options.start.size() > 0) unit_options.start = unit.box().to_unit(options.start);
   DeformResult result = deform_in_unit_box(mesh, labels, unit_options, unit_callback);
-  if (options.variant == Variant::kRobust && options.relabel_collapsed && result.converged &&
-      result.figures.collapsed_faces > 0) {
-    const RerunMesh shared(mesh);
+  const bool robust = options.variant == Variant::kRobust;
+  std::unique_ptr<RerunMesh> shared;
+  if (robust && !result.converged && !result.stopped && unit_options.max_collapsed_share < kLastResortCollapsedShare &&
+      !(options.stop_requested && options.stop_requested())) {
+    DeformOptions last_resort = unit_options;
+    last_resort.max_collapsed_share = kLastResortCollapsedShare;
+    DeformResult again = silent_run(mesh, labels, last_resort);
+    if (again.converged) {
+      shared = std::make_unique<RerunMesh>(mesh);
+      keep_as_next_iteration(mesh, shared->triangulation, labels, unit_callback, std::move(again), result);
+      unit_options = last_resort;  // the further runs below flatten the same way
+    } else {
+      result.seconds.total += again.seconds.total;
+    }
+  }
+  if (robust && options.relabel_collapsed && result.converged && result.figures.collapsed_faces > 0) {
+    if (!shared) shared = std::make_unique<RerunMesh>(mesh);
     for (int round = 0; round < kRerunRounds; ++round)
-      if (!rerun_collapsed(mesh, shared, labels, unit_options, unit_callback, result)) break;
+      if (!rerun_collapsed(mesh, *shared, labels, unit_options, unit_callback, result)) break;
   }
   result.positions = unit.box().from_unit(result.positions, mesh.vertices, input.vertices);
   // The report never contradicts itself: a run that leaves faces above the

@@ -51,7 +51,7 @@ constexpr int kRoundsWithoutProgress = 8;
 FlatCharts flatten_charts(const Vertices& input, const Vertices& current, const Triangles& triangles,
                           const std::vector<int>& triangle_labels, const CotangentWeights& weights,
                           const Eigen::SparseMatrix<double>& laplacian, double shift, const QualityMeasure& quality,
-                          const Placement& place, int max_rounds) {
+                          const Placement& place, double max_collapsed, int max_rounds) {
   FlatCharts result;
   result.planes = std::make_unique<ChartPlanes>(static_cast<int>(current.rows()), triangles, triangle_labels);
   // As-rigid-as-possible targets rather than the paper's: fewer folds to undo
@@ -96,8 +96,7 @@ FlatCharts flatten_charts(const Vertices& input, const Vertices& current, const 
         frontier.swap(next);
       }
       // A region of a good part of the mesh costs as much as a full solve.
-      if (4 * size < n)
-        solved = result.planes->solve_near(laplacian, rhs, region, result.positions);
+      if (4 * size < n) solved = result.planes->solve_near(laplacian, rhs, region, result.positions);
     }
     if (!solved) {
       result.planes->factorize(laplacian);
@@ -109,7 +108,7 @@ FlatCharts flatten_charts(const Vertices& input, const Vertices& current, const 
       result.first_positions = result.positions;
     }
     result.collapsed_area = quality.collapsed_area_fraction(result.states);
-    if (result.collapsed_area > kMaxCollapsedAreaFraction) return result;
+    if (result.collapsed_area > max_collapsed) return result;
     // Collapsing what folds usually ends in a few rounds (fandisk: 11); when
     // the folds stop getting fewer, the labels ask for more than slivers.
     if (result.states.flipped_count < kProgress * fewest_folds) {

@@ -24,34 +24,33 @@
 #include <memory>
 
 #include "deform/chart_planes.h"
-#include "linear_algebra/cotangent_weights.h"
 #include "deform/quality.h"
+#include "linear_algebra/cotangent_weights.h"
 
 namespace polycube {
 
-// A flat-chart result collapsing more of the input's area than this is refused.
-constexpr double kMaxCollapsedAreaFraction = 0.12;
-
 struct FlatCharts {
   bool found = false;
-  Vertices positions;                  // when found: every chart flat, nothing flipped
-  FaceStates states;                   // of `positions`
-  std::unique_ptr<ChartPlanes> planes; // the charts and collapses, factorised, for relax_flat_charts
-  int rounds = 0;                      // flat-chart solves done
-  Vertices first_positions;            // of the first (global) solve: flat, nothing collapsed on purpose
-  int collapsed_on_purpose = 0;        // triangles collapsed to undo a fold
-  double collapsed_area = 0.0;         // share of the input's area collapsed
+  Vertices positions;                   // when found: every chart flat, nothing flipped
+  FaceStates states;                    // of `positions`
+  std::unique_ptr<ChartPlanes> planes;  // the charts and collapses, factorised, for relax_flat_charts
+  int rounds = 0;                       // flat-chart solves done
+  Vertices first_positions;             // of the first (global) solve: flat, nothing collapsed on purpose
+  int collapsed_on_purpose = 0;         // triangles collapsed to undo a fold
+  double collapsed_area = 0.0;          // share of the input's area collapsed
 };
 
 // Puts a solve back where the mesh stands (Deformation::place: component centroids).
 using Placement = std::function<Vertices(const Eigen::MatrixX3d& solution)>;
 
 // From `current`, with per-triangle labels 0..5 and the (shifted) Laplacian
-// `laplacian` of `weights` (deformation.h). Tries at most `max_rounds` solves.
+// `laplacian` of `weights` (deformation.h). Gives up once more than
+// `max_collapsed` of the input's area is collapsed; tries at most
+// `max_rounds` solves.
 FlatCharts flatten_charts(const Vertices& input, const Vertices& current, const Triangles& triangles,
                           const std::vector<int>& triangle_labels, const CotangentWeights& weights,
                           const Eigen::SparseMatrix<double>& laplacian, double shift, const QualityMeasure& quality,
-                          const Placement& place, int max_rounds = 30);
+                          const Placement& place, double max_collapsed, int max_rounds = 30);
 
 // One as-rigid-as-possible step inside the flat charts of `planes`: every
 // triangle's input shape fitted onto its axis (fitted_rotations.h), solved

@@ -36,14 +36,14 @@ void flatten_stage(RobustRun& run, int iteration) {
   d.release_factorization();  // restored below unless the charts end flat
   const Placement place = [&d](const Eigen::MatrixX3d& solution) { return d.place(solution); };
   FlatCharts flat = flatten_charts(d.mesh.vertices, d.x, d.triangles(), d.triangle_labels, d.weights,
-                                   d.laplacian.matrix(), d.shift, d.quality, place);
+                                   d.laplacian.matrix(), d.shift, d.quality, place, d.options.max_collapsed_share);
   result.seconds.factorize += d.phase.lap();  // nearly all of it
   result.factorizations += flat.planes->factorizations();
   result.flatten_attempts.push_back({iteration, flat.rounds, flat.states.flipped_count, flat.collapsed_area, flat.found});
   if (!flat.found && flat.first_positions.size() > 0) {
     UntangleStep opened = untangle_step(run, flat.first_positions);
     result.seconds.solve += d.phase.lap();
-    if (opened.fold_free && d.quality.collapsed_area_fraction(opened.states) <= kMaxCollapsedAreaFraction) {
+    if (opened.fold_free && d.quality.collapsed_area_fraction(opened.states) <= d.options.max_collapsed_share) {
       flat.positions = std::move(opened.positions);
       flat.states = std::move(opened.states);
       flat.planes = run.charts_like(*flat.planes);

@@ -6,17 +6,17 @@
 #include <fstream>
 #include <set>
 
-#include "labels/axis.h"
 #include "deform/chart_planes.h"
-#include "linear_algebra/cotangent_weights.h"
 #include "deform/deform.h"
 #include "deform/flatten_charts.h"
-#include "linear_algebra/laplacian.h"
-#include "labels/nearest_labels.h"
 #include "deform/quality.h"
+#include "io/read_mesh.h"
+#include "labels/axis.h"
+#include "labels/nearest_labels.h"
+#include "linear_algebra/cotangent_weights.h"
+#include "linear_algebra/laplacian.h"
 #include "mesh/triangulate.h"
 #include "mesh/union_find.h"
-#include "io/read_mesh.h"
 #include "test_meshes.h"
 
 namespace {
@@ -98,7 +98,8 @@ TEST(ChartPlanes, CollapsePutsATriangleOnALine) {
   planes.factorize(L);
   EXPECT_EQ(planes.factorizations(), 4);
   const Vertices flat = planes.solve(L * s.x);
-  const Eigen::Vector3d a = flat.row(s.triangles(t, 0)), b = flat.row(s.triangles(t, 1)), c = flat.row(s.triangles(t, 2));
+  const Eigen::Vector3d a = flat.row(s.triangles(t, 0)), b = flat.row(s.triangles(t, 1)),
+                        c = flat.row(s.triangles(t, 2));
   EXPECT_LT((b - a).cross(c - a).norm(), 1e-12);
   EXPECT_NEAR(a[other], b[other], 1e-12);
   EXPECT_NEAR(a[other], c[other], 1e-12);
@@ -183,10 +184,11 @@ TEST(FlattenCharts, RefusesWhatWouldCrushTheModel) {
   Laplacian laplacian(static_cast<int>(mesh.vertices.rows()), t.triangles);
   const double shift = laplacian.assemble(weights, 1e-8);
   const QualityMeasure quality(mesh.vertices, t.triangles, labels);
-  const FlatCharts flat = flatten_charts(mesh.vertices, mesh.vertices, t.triangles, labels, weights,
-                                         laplacian.matrix(), shift, quality, [](const Eigen::MatrixX3d& y) { return y; });
+  const FlatCharts flat = flatten_charts(
+      mesh.vertices, mesh.vertices, t.triangles, labels, weights, laplacian.matrix(), shift, quality,
+      [](const Eigen::MatrixX3d& y) { return y; }, DeformOptions{}.max_collapsed_share);
   EXPECT_FALSE(flat.found);
-  EXPECT_GT(flat.collapsed_area, kMaxCollapsedAreaFraction);
+  EXPECT_GT(flat.collapsed_area, DeformOptions{}.max_collapsed_share);
 }
 
 // Once the robust variant has flattened the charts, every later iteration

@@ -6,16 +6,16 @@
 #include <chrono>
 #include <fstream>
 
-#include "labeller/auto_labels.h"
 #include "deform/deform.h"
 #include "deform/quality.h"
 #include "deform/relabel_collapsed_faces.h"
-#include "labels/nearest_labels.h"
-#include "labels/orientation.h"
-#include "mesh/triangulate.h"
-#include "labels/validate_labels.h"
 #include "io/labels_io.h"
 #include "io/read_mesh.h"
+#include "labeller/auto_labels.h"
+#include "labels/nearest_labels.h"
+#include "labels/orientation.h"
+#include "labels/validate_labels.h"
+#include "mesh/triangulate.h"
 #include "test_meshes.h"
 
 namespace {
@@ -185,8 +185,10 @@ PolygonMesh sphere_above(double above) {
     const int* corner = &sphere.faces.indices[sphere.faces.offsets[f]];
     for (int k = 0; k < n; ++k) c += sphere.vertices.row(corner[k]).transpose() / n;
     if (c.z() <= above) continue;
-    if (n == 3) cap.faces.add({corner[0], corner[1], corner[2]});
-    else cap.faces.add({corner[0], corner[1], corner[2], corner[3]});
+    if (n == 3)
+      cap.faces.add({corner[0], corner[1], corner[2]});
+    else
+      cap.faces.add({corner[0], corner[1], corner[2], corner[3]});
   }
   return cap;
 }
@@ -431,4 +433,34 @@ TEST(SecondRun, RepairedRelabellingOpensTheElephant) {
   EXPECT_LT(further.figures.collapsed_area, 0.6 * first.figures.collapsed_area);
   EXPECT_GT(further.second_run_iterations, 0);
   EXPECT_TRUE(validate_labels(runs.mesh, further.labels).valid());
+}
+
+// The anchor's automatic labels flatten only by collapsing 15% of its area,
+// which stage 3 refuses, and the run ends 90 degrees from a polycube. Run
+// again with that bound raised (docs/design.md section 2.6, stage 9), it is
+// exact, and the further runs of stage 8 open most of what that collapsed.
+TEST(LastResort, TheAnchorBecomesAnExactPolycube) {
+  const std::string path = cgal_mesh("anchor");
+  if (!exists(path)) GTEST_SKIP() << path << " is missing: run `make data` (Debian libcgal-demo)";
+  const PolygonMesh mesh = read_mesh(path);
+  const std::vector<int> labels = auto_labels(mesh);
+  const DeformOptions options;
+  const DeformResult r = deform(mesh, labels, options);
+  print_figures("anchor", r);
+  EXPECT_TRUE(r.converged);
+  EXPECT_LT(r.figures.normal_deviation_max_deg, 0.5);
+  EXPECT_EQ(r.figures.flipped_faces, 0);
+  EXPECT_LE(r.figures.folded_edges, r.input_folded_edges);
+  // After a whole first run that did not flatten...
+  EXPECT_GT(r.iterations, options.iterations);
+  ASSERT_FALSE(r.flatten_attempts.empty());
+  EXPECT_FALSE(r.flatten_attempts.front().kept);
+  EXPECT_GT(r.flatten_attempts.front().collapsed_area, options.max_collapsed_share);
+  // ...a flattening above the usual bound was kept, and the result collapses
+  // far less than it did.
+  double kept_above = 0.0;
+  for (const DeformResult::FlattenAttempt& a : r.flatten_attempts)
+    if (a.kept) kept_above = std::max(kept_above, a.collapsed_area);
+  EXPECT_GT(kept_above, options.max_collapsed_share);
+  EXPECT_LT(r.figures.collapsed_area, 0.05);
 }
