@@ -30,7 +30,9 @@ AutoLabelOptions AutoLabelOptions::with_detail(double detail) {
   // there. Even charts under 0.1% of the area, merged at the default, left
   // armadillo and diplodocus with labels whose flat solve collapses more than
   // stage 3 accepts (docs/design.md section 2.6), so the default keeps every
-  // chart the cut and the repair found.
+  // chart the cut and the repair found but those of one or two faces (a
+  // chart that small has no room to flatten: Suzanne's 28 charts, eight of
+  // them of one or two faces, become 12).
   options.simplify_below = std::max(0.0, 0.01 * (1.0 - 2.0 * detail));
   return options;
 }
@@ -80,7 +82,7 @@ std::vector<int> auto_labels(const PolygonMesh& input, const AutoLabelOptions& o
     if (violation_score(adjacency, unsqueezed) <= violations) labels = std::move(unsqueezed);
   }
   label_open_caps(mesh, adjacency, labels);
-  if (options.repair && options.simplify_below > 0.0)
+  if (options.repair)
     labels = simplify_charts(adjacency, energy, areas, std::move(labels), options.simplify_below, options.repair_moves);
   if (straightened) *straightened = unit.box().from_unit(straight.vertices, mesh.vertices, input.vertices);
   return labels;

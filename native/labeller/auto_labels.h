@@ -21,7 +21,8 @@
 //    (labels/squeezed_triangles.h), and repair again, a few rounds.
 // 5. Open components that mostly look one way (an eyeball, a leaf) take
 //    one label: one flat chart each (labels/open_caps.h).
-// 6. At low detail, merge away small charts (simplify_below).
+// 6. Merge away charts of one or two faces the repair could not, and at low
+//    detail small charts (simplify_below), each with a short repair.
 // Deterministic: the same mesh and options give the same labels.
 #pragma once
 
@@ -49,9 +50,10 @@ struct AutoLabelOptions {
   int repair_moves = 200;          // at most this many repair moves (each fixes at least one violation)
   int straighten_iterations = 20;  // step 0; 0 reads the input's normals
   int straighten_rings = 3;
-  // Step 6: charts under this share of the area merge into a neighbour where
-  // a short repair keeps the polycube conditions (repair_charts.h,
-  // simplify_charts); 0 merges none.
+  // Step 6: charts under this share of the area (and charts of fewer than
+  // three faces) merge into a neighbour where a short repair keeps the
+  // polycube conditions (repair_charts.h, simplify_charts); 0: only those
+  // of fewer than three faces. Needs `repair`.
   double simplify_below = 0.0;
 };
 

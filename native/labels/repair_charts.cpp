@@ -393,7 +393,8 @@ std::vector<int> simplify_charts(const MeshAdjacency& adjacency, const LabelEner
     }
     std::vector<int> small;
     for (int c = 0; c < ch.count(); ++c)
-      if (!neighbours[c].empty() && chart_area[c] < max_share * total_area) small.push_back(c);
+      if (!neighbours[c].empty() && (ch.faces[c] < kTinyFaces || chart_area[c] < max_share * total_area))
+        small.push_back(c);
     std::stable_sort(small.begin(), small.end(), [&](int a, int b) { return chart_area[a] < chart_area[b]; });
     bool merged = false;
     for (int c : small) {

@@ -47,7 +47,9 @@ std::vector<int> merge_tiny_charts(const MeshAdjacency& adjacency, const LabelEn
                                    const std::vector<double>& areas, std::vector<int> labels, int max_moves);
 
 // Fewer charts where small ones only add detail: each chart under
-// `max_share` of the area, smallest first, takes a neighbour's label, and a
+// `max_share` of the area or of fewer than three faces (tiny, as above, but
+// left by merge_tiny_charts because no neighbour's label alone keeps the
+// polycube conditions), smallest first, takes a neighbour's label, and a
 // short repair run follows when that broke the polycube conditions; the
 // first such merge that ends with fewer charts and no higher violation score
 // is kept, until none is. areas: per face.
