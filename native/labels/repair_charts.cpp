@@ -6,45 +6,9 @@
 
 #include "labels/charts.h"
 #include "labels/validate_labels.h"
+#include "labels/violation_score.h"
 
 namespace polycube {
-
-int violation_score(const MeshAdjacency& adjacency, const std::vector<int>& labels) {
-  // The same conditions as validate_labels, without listing faces: this runs
-  // once per candidate move.
-  const Charts ch = charts(adjacency, labels);
-  std::vector<std::uint64_t> pairs;
-  for (int e = 0; e < adjacency.edge_count(); ++e)
-    for (int i = adjacency.edge_offsets[e]; i < adjacency.edge_offsets[e + 1]; ++i)
-      for (int j = i + 1; j < adjacency.edge_offsets[e + 1]; ++j) {
-        const std::uint64_t a = ch.of_face[adjacency.edge_faces[i]], b = ch.of_face[adjacency.edge_faces[j]];
-        if (a != b) pairs.push_back(std::min(a, b) << 32 | std::max(a, b));
-      }
-  std::sort(pairs.begin(), pairs.end());
-  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-  std::vector<int> neighbours(ch.count(), 0);
-  int score = 0;
-  for (std::uint64_t p : pairs) {
-    const int a = static_cast<int>(p >> 32), b = static_cast<int>(p & 0xffffffffu);
-    ++neighbours[a];
-    ++neighbours[b];
-    if ((ch.label[a] ^ 1) == ch.label[b]) score += 2;
-  }
-  const std::vector<char> open_side = charts_with_open_side(adjacency, ch);
-  for (int c = 0; c < ch.count(); ++c)
-    if (!open_side[c]) score += std::max(0, 4 - neighbours[c]);
-  std::vector<int> around;
-  const int vertex_count = static_cast<int>(adjacency.vertex_offsets.size()) - 1;
-  for (int v = 0; v < vertex_count; ++v) {
-    around.clear();
-    for (int k = adjacency.vertex_offsets[v]; k < adjacency.vertex_offsets[v + 1]; ++k) {
-      const int c = ch.of_face[adjacency.vertex_faces[k]];
-      if (std::find(around.begin(), around.end(), c) == around.end()) around.push_back(c);
-    }
-    score += std::max(0, static_cast<int>(around.size()) - 3);
-  }
-  return score;
-}
 
 namespace {
 
@@ -122,8 +86,7 @@ Move absorb(int chart, const std::vector<std::vector<int>>& neighbours, const Ch
   return move;
 }
 
-std::vector<Move> candidate_moves(const MeshAdjacency& adjacency, const LabelEnergy& energy,
-                                  const std::vector<int>& labels,
+std::vector<Move> candidate_moves(const LabelEnergy& energy, const std::vector<int>& labels,
                                   const std::vector<std::vector<int>>& neighbours_of_face, const Charts& ch,
                                   const std::vector<std::vector<int>>& chart_faces,
                                   const std::vector<std::vector<int>>& neighbours, const LabelViolation& v) {
@@ -190,8 +153,10 @@ std::vector<int> merge_tiny_charts(const MeshAdjacency& adjacency, const LabelEn
   double total_area = 0.0;
   for (double a : areas) total_area += a;
   int score = violation_score(adjacency, labels);
+  const std::vector<std::vector<int>> edges_of_face = face_edges(adjacency, face_count);
   for (int move = 0; move < max_moves; ++move) {
     const Charts ch = charts(adjacency, labels);
+    ViolationDelta delta(adjacency, edges_of_face, labels);
     std::vector<double> chart_area(ch.count(), 0.0);
     std::vector<std::vector<int>> chart_faces(ch.count()), neighbours(ch.count());
     for (int f = 0; f < face_count; ++f) {
@@ -215,7 +180,7 @@ std::vector<int> merge_tiny_charts(const MeshAdjacency& adjacency, const LabelEn
       for (int n : neighbours[c]) {
         std::vector<int> candidate = labels;
         for (int f : chart_faces[c]) candidate[f] = ch.label[n];
-        const int s = violation_score(adjacency, candidate);
+        const int s = delta.score_of(candidate, chart_faces[c]);
         if (s > score) continue;  // never at the price of validity
         const double e = energy(candidate);
         if (best.empty() || e < best_energy) {
@@ -252,6 +217,7 @@ struct Greedy {
   const MeshAdjacency& adjacency;
   const LabelEnergy& energy;
   std::vector<std::vector<int>> neighbours_of_face;  // face_neighbours
+  std::vector<std::vector<int>> edges_of_face;       // face_edges
   long budget;                                       // candidate evaluations left
 
   // Greedy moves until valid, stuck or out of moves; the best `keep` of the
@@ -280,6 +246,7 @@ std::vector<int> Greedy::run(std::vector<int> labels, int& score, int max_moves,
     });
     bool moved = false;
     const double current_energy = energy(labels);
+    ViolationDelta delta(adjacency, edges_of_face, labels);
     if (stuck) stuck->clear();
     for (const LabelViolation* violation : order) {
       const LabelViolation& v = *violation;
@@ -288,8 +255,7 @@ std::vector<int> Greedy::run(std::vector<int> labels, int& score, int max_moves,
       int best_score = score;
       double best_cost = 0.0;
       std::vector<int> best;
-      for (const Move& move :
-           candidate_moves(adjacency, energy, labels, neighbours_of_face, ch, faces_of_chart, neighbours, v)) {
+      for (const Move& move : candidate_moves(energy, labels, neighbours_of_face, ch, faces_of_chart, neighbours, v)) {
         if (move.faces.empty() || move.label < 0 || budget-- <= 0) continue;
         std::vector<int> candidate = move.result.empty() ? labels : move.result;
         for (int f : move.result.empty() ? move.faces : std::vector<int>{}) {
@@ -303,7 +269,7 @@ std::vector<int> Greedy::run(std::vector<int> labels, int& score, int max_moves,
               best_label = l;
           candidate[f] = best_label;
         }
-        const int s = violation_score(adjacency, candidate);
+        const int s = delta.score_of(candidate, move.faces);
         if (s >= score) {
           if (stuck && keep > 0) {
             const double e = energy(candidate);
@@ -341,7 +307,7 @@ constexpr size_t kLookahead = 4;
 constexpr int kLookaheadMoves = 12;
 
 Greedy make_greedy(const MeshAdjacency& adjacency, const LabelEnergy& energy, int face_count) {
-  return Greedy{adjacency, energy, face_neighbours(adjacency, face_count),
+  return Greedy{adjacency, energy, face_neighbours(adjacency, face_count), face_edges(adjacency, face_count),
                 std::max(2000L, 100000000L / std::max(1, face_count))};
 }
 
@@ -384,6 +350,7 @@ std::vector<int> simplify_charts(const MeshAdjacency& adjacency, const LabelEner
   for (int move = 0; move < max_moves && greedy.budget > 0; ++move) {
     const Charts ch = charts(adjacency, labels);
     const std::vector<std::vector<int>> faces_of_chart = chart_faces(ch);
+    ViolationDelta delta(adjacency, greedy.edges_of_face, labels);
     std::vector<double> chart_area(ch.count(), 0.0);
     for (int f = 0; f < face_count; ++f) chart_area[ch.of_face[f]] += areas[f];
     std::vector<std::vector<int>> neighbours(ch.count());
@@ -402,7 +369,7 @@ std::vector<int> simplify_charts(const MeshAdjacency& adjacency, const LabelEner
         if (greedy.budget-- <= 0) break;
         std::vector<int> candidate = labels;
         for (int f : faces_of_chart[c]) candidate[f] = ch.label[n];
-        int s = violation_score(adjacency, candidate);
+        int s = delta.score_of(candidate, faces_of_chart[c]);
         if (s > score) candidate = greedy.run(std::move(candidate), s, kLookaheadMoves, 0, nullptr);
         if (s > score || charts(adjacency, candidate).count() >= ch.count()) continue;
         labels = std::move(candidate);

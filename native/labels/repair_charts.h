@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "labels/alpha_expansion.h"
+#include "labels/violation_score.h"
 #include "mesh/mesh_adjacency.h"
 
 namespace polycube {
@@ -56,8 +57,5 @@ std::vector<int> merge_tiny_charts(const MeshAdjacency& adjacency, const LabelEn
 std::vector<int> simplify_charts(const MeshAdjacency& adjacency, const LabelEnergy& energy,
                                  const std::vector<double>& areas, std::vector<int> labels, double max_share,
                                  int max_moves);
-
-// The score above (0 for a valid labeling); labels 0..5, one per face.
-int violation_score(const MeshAdjacency& adjacency, const std::vector<int>& labels);
 
 }  // namespace polycube

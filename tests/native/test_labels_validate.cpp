@@ -4,14 +4,17 @@
 
 #include <algorithm>
 #include <fstream>
+#include <random>
 
+#include "io/labels_io.h"
+#include "io/read_mesh.h"
 #include "labels/axis.h"
 #include "labels/nearest_labels.h"
 #include "labels/orientation.h"
-#include "mesh/triangulate.h"
 #include "labels/validate_labels.h"
-#include "io/labels_io.h"
-#include "io/read_mesh.h"
+#include "labels/violation_score.h"
+#include "mesh/mesh_adjacency.h"
+#include "mesh/triangulate.h"
 #include "test_meshes.h"
 
 namespace {
@@ -55,8 +58,8 @@ int vertex_at(const PolygonMesh& mesh, Eigen::Vector3d p) {
 constexpr int kPX = 0, kPY = 2, kPZ = 4, kNZ = 5;
 
 int count_kind(const LabelValidation& v, ViolationKind kind) {
-  return static_cast<int>(std::count_if(v.violations.begin(), v.violations.end(),
-                                        [&](const LabelViolation& x) { return x.kind == kind; }));
+  return static_cast<int>(
+      std::count_if(v.violations.begin(), v.violations.end(), [&](const LabelViolation& x) { return x.kind == kind; }));
 }
 
 // The polycube conditions' violations, which come first in the list.
@@ -193,8 +196,10 @@ TEST(ValidateLabels, BoundaryThatDoublesBackIsATurningPoint) {
   LabelledMesh box = box6();
   relabel(box, faces_where(box, kPZ, [](const Eigen::Vector3d& c) { return c.x() > 3 && c.y() > 1 && c.y() < 2; }),
           kPX);
-  relabel(box, faces_where(box, kPZ, [](const Eigen::Vector3d& c) { return c.x() > 3 && c.x() < 4 && c.y() > 2 && c.y() < 5; }),
-          kPX);
+  relabel(
+      box,
+      faces_where(box, kPZ, [](const Eigen::Vector3d& c) { return c.x() > 3 && c.x() < 4 && c.y() > 2 && c.y() < 5; }),
+      kPX);
   const LabelValidation v = validate_labels(box.mesh, box.labels);
   EXPECT_TRUE(v.valid());
   ASSERT_EQ(count_kind(v, ViolationKind::kTurningPoint), 1);
@@ -265,8 +270,57 @@ TEST(ValidateLabels, RejectsBadLabels) {
 
 PolygonMesh reversed(PolygonMesh mesh) {
   for (int f = 0; f < mesh.faces.count(); ++f)
-    std::reverse(mesh.faces.indices.begin() + mesh.faces.offsets[f], mesh.faces.indices.begin() + mesh.faces.offsets[f + 1]);
+    std::reverse(mesh.faces.indices.begin() + mesh.faces.offsets[f],
+                 mesh.faces.indices.begin() + mesh.faces.offsets[f + 1]);
   return mesh;
+}
+
+// The repair's incremental score (labels/violation_score.h) gives the same
+// number as counting the whole mesh, for every kind of move the repair makes:
+// single faces, whole charts (merging and splitting charts) and bands, on a
+// closed model with many violations and on one with open sides.
+TEST(ViolationDelta, EqualsTheWholeCount) {
+  int checked = 0;
+  for (const char* name : {"elephant", "mech-holes-shark"}) {
+    const std::string path = std::string(POLYCUBE_MESH_DATA) + "/" + name + ".off";
+    if (!std::ifstream(path).good()) GTEST_SKIP() << path << " is missing: run `make data`";
+    const PolygonMesh mesh = read_mesh(path);
+    const int face_count = mesh.faces.count();
+    const MeshAdjacency adjacency = mesh_adjacency(mesh.faces, static_cast<int>(mesh.vertices.rows()));
+    const std::vector<std::vector<int>> edges = face_edges(adjacency, face_count);
+    const std::vector<std::vector<int>> neighbours = face_neighbours(adjacency, face_count);
+    std::vector<int> labels = nearest_labels(mesh);
+    std::mt19937 random(7);
+    for (int round = 0; round < 6; ++round) {
+      ViolationDelta delta(adjacency, edges, labels);
+      EXPECT_EQ(delta.score(), violation_score(adjacency, labels));
+      const Charts ch = charts(adjacency, labels);
+      const std::vector<std::vector<int>> faces_of_chart = chart_faces(ch);
+      for (int trial = 0; trial < 60; ++trial) {
+        const int seed = static_cast<int>(random() % face_count), label = static_cast<int>(random() % 6);
+        std::vector<int> faces;
+        switch (trial % 3) {
+          case 0:
+            faces = {seed};
+            break;
+          case 1:
+            faces = faces_of_chart[ch.of_face[seed]];
+            break;
+          default:
+            faces = neighbours[seed];
+            faces.push_back(seed);
+            for (int f : neighbours[seed]) faces.insert(faces.end(), neighbours[f].begin(), neighbours[f].end());
+        }
+        std::vector<int> candidate = labels;
+        for (int f : faces) candidate[f] = label;
+        ASSERT_EQ(delta.score_of(candidate, faces), violation_score(adjacency, candidate))
+            << name << " trial " << trial;
+        ++checked;
+        if (trial == 59) labels = candidate;  // the next round starts from another labeling
+      }
+    }
+  }
+  EXPECT_EQ(checked, 720);
 }
 
 TEST(Orientation, OutwardInwardInconsistentAndNonOrientable) {

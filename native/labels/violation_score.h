@@ -1,0 +1,55 @@
+// How far a labeling is from the polycube conditions (docs/design.md
+// section 3.2), as one number the repair (repair_charts.h) lowers: each
+// missing neighbour of a chart that does not reach the mesh border, each pair
+// of opposite charts side by side (twice) and each chart beyond three at a
+// vertex. 0 for a valid labeling.
+//
+// The repair scores thousands of candidate moves per labeling, each changing
+// a few faces. Recounting the whole mesh per candidate was most of the
+// labeller's time (armadillo: 60%); ViolationDelta recounts only the charts
+// the changed faces are in or touch, and gives the same number.
+#pragma once
+
+#include <vector>
+
+#include "labels/charts.h"
+#include "mesh/mesh_adjacency.h"
+
+namespace polycube {
+
+// labels: 0..5, one per face.
+int violation_score(const MeshAdjacency& adjacency, const std::vector<int>& labels);
+
+// The edges of each face (the faces_of_edge lists turned around), built once per mesh.
+std::vector<std::vector<int>> face_edges(const MeshAdjacency& adjacency, int face_count);
+
+// The score of labelings that differ from `labels` only on some faces.
+// Why it is exact: a chart neither holding a changed face nor sharing an
+// edge with one keeps its faces and its label, so only the others (the
+// region) are rebuilt, and only the boundaries, neighbour counts and vertices
+// that touch the region can change.
+class ViolationDelta {
+ public:
+  ViolationDelta(const MeshAdjacency& adjacency, const std::vector<std::vector<int>>& edges_of_face,
+                 const std::vector<int>& labels);
+
+  int score() const { return score_; }
+
+  // `candidate` equals the labels given above outside `changed` (faces that
+  // may differ; listing unchanged ones too is fine).
+  int score_of(const std::vector<int>& candidate, const std::vector<int>& changed);
+
+ private:
+  const MeshAdjacency& adjacency_;
+  const std::vector<std::vector<int>>& edges_of_face_;
+  Charts charts_;
+  std::vector<std::vector<int>> faces_of_chart_;
+  std::vector<std::vector<int>> neighbours_;  // per chart, ascending
+  std::vector<char> open_side_;
+  int score_ = 0;
+  // Scratch, reused between calls: stamps mark membership for one call.
+  int stamp_ = 0;
+  std::vector<int> chart_stamp_, face_stamp_, edge_stamp_, vertex_stamp_, local_of_face_;
+};
+
+}  // namespace polycube
