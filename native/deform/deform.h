@@ -146,6 +146,9 @@ struct DeformResult {
   // relabelled (DeformOptions::relabel_collapsed), when it was kept; it
   // counts as one iteration in `iterations`, the last. 0 otherwise.
   int second_run_iterations = 0;
+  // Whether the result comes from stage 9's run (DeformOptions::max_collapsed_share):
+  // the first run did not end exact.
+  bool last_resort = false;
   // The `robust` variant's iteration at which every chart became exactly
   // flat (flatten_charts.h), 0 when it did not; the triangles it collapsed
   // on purpose there to undo folds.

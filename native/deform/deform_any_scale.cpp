@@ -90,6 +90,7 @@ void keep_as_next_iteration(const PolygonMesh& mesh, const Triangulation& triang
   if (again.flat_iteration > 0) again.flat_iteration = offset + 1;
   again.factorizations += result.factorizations;
   again.unlabelled_faces = result.unlabelled_faces;  // the silent run was given them filled
+  again.last_resort = again.last_resort || result.last_resort;
   std::vector<DeformResult::FlattenAttempt> attempts = result.flatten_attempts;
   for (DeformResult::FlattenAttempt attempt : again.flatten_attempts) {
     attempt.iteration = offset + 1;
@@ -170,6 +171,7 @@ DeformResult deform(const PolygonMesh& input, const std::vector<int>& labels, co
     DeformOptions last_resort = unit_options;
     last_resort.max_collapsed_share = kLastResortCollapsedShare;
     DeformResult again = silent_run(mesh, labels, last_resort);
+    again.last_resort = true;  // and the further runs below keep saying so
     if (again.converged) {
       shared = std::make_unique<RerunMesh>(mesh);
       keep_as_next_iteration(mesh, shared->triangulation, labels, unit_callback, std::move(again), result);

@@ -42,6 +42,7 @@ Json deform_report(const PolygonMesh& mesh, const DeformResult& r, const DeformO
                {"failure", r.failure},
                {"flat_iteration", r.flat_iteration},
                {"second_run_iterations", r.second_run_iterations},
+               {"last_resort", r.last_resort},
                {"collapsed_on_purpose", r.collapsed_on_purpose},
                {"unlabelled_faces", r.unlabelled_faces},
                {"solver", r.solver},
@@ -62,9 +63,10 @@ Json deform_report(const PolygonMesh& mesh, const DeformResult& r, const DeformO
                      {"factorize", r.seconds.factorize}, {"rotations", r.seconds.rotations},
                      {"solve", r.seconds.solve},         {"measure", r.seconds.measure}};
   Json& stages = json["stages"] = Json::object();
-  const std::pair<const char*, const StageCost*> stage_costs[] = {
-      {"fit", &r.stages.fit}, {"continuous", &r.stages.continuous}, {"relax", &r.stages.relax},
-      {"flatten", &r.stages.flatten}};
+  const std::pair<const char*, const StageCost*> stage_costs[] = {{"fit", &r.stages.fit},
+                                                                  {"continuous", &r.stages.continuous},
+                                                                  {"relax", &r.stages.relax},
+                                                                  {"flatten", &r.stages.flatten}};
   for (const auto& [name, cost] : stage_costs) stages[name] = {{"count", cost->count}, {"seconds", cost->seconds}};
   stages["current_steps"] = r.stages.current_steps;
   if (options.time_references)

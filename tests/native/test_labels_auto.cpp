@@ -404,6 +404,7 @@ TEST(SecondRun, RelabelledCollapsedFacesFindRoomOnTheEight) {
   ASSERT_TRUE(first.converged);
   EXPECT_GT(first.figures.collapsed_faces, 0);
   EXPECT_TRUE(first.relabelled_faces.empty());
+  EXPECT_FALSE(second.last_resort);
   EXPECT_TRUE(second.converged);
   EXPECT_EQ(second.figures.flipped_faces, 0);
   EXPECT_LE(second.figures.folded_edges, second.input_folded_edges);
@@ -453,6 +454,7 @@ TEST(LastResort, TheAnchorBecomesAnExactPolycube) {
   EXPECT_LE(r.figures.folded_edges, r.input_folded_edges);
   // After a whole first run that did not flatten...
   EXPECT_GT(r.iterations, options.iterations);
+  EXPECT_TRUE(r.last_resort);
   ASSERT_FALSE(r.flatten_attempts.empty());
   EXPECT_FALSE(r.flatten_attempts.front().kept);
   EXPECT_GT(r.flatten_attempts.front().collapsed_area, options.max_collapsed_share);
