@@ -36,14 +36,6 @@ constexpr int kRerunRounds = 6;
 // runs of stage 8 then reopen what they can.
 constexpr double kLastResortCollapsedShare = 0.5;
 
-// Stage 8 (docs/design.md section 2.6): an exact polycube that collapsed
-// faces is run once more from the input, its collapsed faces relabelled
-// (relabel_collapsed_faces.h) and the polycube conditions that broke
-// repaired, and kept when that run is exact, fold-free and collapses less
-// area, with no more polycube conditions broken. Returns whether it was
-// kept. The callback sees a kept run once, as the iteration after the last
-// one it saw (DeformResult::second_run_iterations counts the further runs'
-// own iterations), and the faces relabelled join `relabelled_faces`.
 // What the further runs need of the mesh, built once for all of them.
 struct RerunMesh {
   explicit RerunMesh(const PolygonMesh& mesh)
@@ -101,6 +93,14 @@ void keep_as_next_iteration(const PolygonMesh& mesh, const Triangulation& triang
   if (callback) callback(result.iterations, result.positions, result.figures);
 }
 
+// Stage 8 (docs/design.md section 2.6): an exact polycube that collapsed
+// faces is run once more from the input, its collapsed faces relabelled
+// (relabel_collapsed_faces.h) and the polycube conditions that broke
+// repaired, and kept when that run is exact, fold-free and collapses less
+// area, with no more polycube conditions broken. Returns whether it was
+// kept. The callback sees a kept run once, as the iteration after the last
+// one it saw (DeformResult::second_run_iterations counts the further runs'
+// own iterations), and the faces relabelled join `relabelled_faces`.
 bool rerun_collapsed(const PolygonMesh& mesh, const RerunMesh& shared, const std::vector<int>& labels,
                      const DeformOptions& options, const IterationCallback& callback, DeformResult& result) {
   if (result.stopped || !result.converged || result.figures.collapsed_faces == 0 || result.figures.flipped_faces > 0 ||
