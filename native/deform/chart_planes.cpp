@@ -129,6 +129,7 @@ void ChartPlanes::factorize(const Eigen::SparseMatrix<double>& laplacian) {
 }
 
 Vertices ChartPlanes::solve(const Eigen::MatrixX3d& rhs) const {
+  ++solves_;
   const Eigen::Index n = rhs.rows();
   Vertices x(n, 3);
   for (int axis = 0; axis < 3; ++axis) {

@@ -43,6 +43,8 @@ class ChartPlanes {
   // whose charts changed. Throws Error when a factorisation fails.
   void factorize(const Eigen::SparseMatrix<double>& laplacian);
   int factorizations() const { return factorizations_; }
+  // Calls of solve() (three back-substitutions each, one per axis).
+  int solves() const { return solves_; }
   // Another ChartPlanes of the same labels (its charts without this one's
   // collapses) factorises those systems with `same_charts`' orderings
   // (sparse_cholesky.h) instead of computing them again: the same factors,
@@ -77,6 +79,7 @@ class ChartPlanes {
   std::array<bool, 3> charts_only_ = {true, true, true};
   std::array<SparseCholesky::Ordering, 3> chart_orderings_;
   int factorizations_ = 0;
+  mutable int solves_ = 0;
 };
 
 }  // namespace polycube

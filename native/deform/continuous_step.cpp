@@ -46,9 +46,10 @@ FoldFreeStep continuous_step(RobustRun& run, int iteration) {
       // target need not be exact: the step control keeps whatever it
       // reaches fold-free.
       if (c.current_guess.rows() != d.n) c.current_guess = d.x;
-      c.current_guess = preconditioned_cg(c.current_laplacian->matrix(), rhs, d.factorization,
-                                          std::move(c.current_guess), kCurrentSolveSteps, kCurrentSolveTolerance)
-                            .solution;
+      ConjugateGradient cg = preconditioned_cg(c.current_laplacian->matrix(), rhs, d.factorization,
+                                               std::move(c.current_guess), kCurrentSolveSteps, kCurrentSolveTolerance);
+      result.back_substitutions += cg.iterations;
+      c.current_guess = std::move(cg.solution);
       step = run.controlled_step(d.place(c.current_guess));
     } else {
       if (!c.current_analyzed) c.current_factorization.analyze(c.current_laplacian->matrix(), true);

@@ -76,9 +76,10 @@ struct DeformOptions {
   // labeller's straightened shape; empty: the input. Energies and figures are
   // always measured against the input.
   Vertices start;
-  // Also time one back-substitution with the input's factorisation and one
-  // measurement of the result (DeformResult::reference_seconds): the units
-  // `make bench` states the cost of an iteration in.
+  // Also time one factorisation of the input's Laplacian, one
+  // back-substitution with it and one measurement of the result
+  // (DeformResult::reference_seconds): the units `make bench` states the
+  // cost of an iteration and its floor in.
   bool time_references = false;
   // Robust variant: when the result is exact but collapsed faces, run again
   // from the input with those faces relabelled (relabel_collapsed_faces.h),
@@ -100,17 +101,21 @@ struct PhaseSeconds {
   double total = 0, assemble = 0, factorize = 0, rotations = 0, solve = 0, measure = 0;
 };
 
-// Where an iteration's time goes, by stage of the robust variant (docs/design.md
-// section 2.6): fitting, the continuous fallback, relaxing flat charts (each
-// iteration's own time, measurement included, flattening attempts left out),
-// and the attempts at flattening. The other variants count every iteration
-// as continuous.
+// Where the run's time goes, by stage of the robust variant (docs/design.md
+// section 2.6), each stage's seconds without the others': the set-up before
+// the first iteration (triangulating, analysing, assembling and factorising
+// the input's Laplacian), fitting, the continuous fallback, relaxing flat
+// charts (each an iteration's own time), the attempts at flattening, the
+// untangling of flat shapes (untangle_step.h, within a flattening attempt or
+// a relaxing iteration) and the measurement of every iteration. What is
+// left of `seconds.total` is the result's own measurement (conclude). The
+// other variants count every iteration as continuous.
 struct StageCost {
-  int count = 0;  // iterations, or calls for `flatten` (each a few solves: flatten_attempts)
+  int count = 0;  // iterations, or calls for `flatten` and `untangle`
   double seconds = 0.0;
 };
 struct StageSeconds {
-  StageCost fit, continuous, relax, flatten;
+  StageCost set_up, fit, continuous, relax, flatten, untangle, measure;
   int current_steps = 0;  // continuous steps that needed the current mesh's Laplacian
 };
 
@@ -166,13 +171,20 @@ struct DeformResult {
   };
   std::vector<FlattenAttempt> flatten_attempts;
   int factorizations = 0;  // numeric factorisations of a Laplacian
+  // Back-substitutions for three right-hand sides, or three of one: one per
+  // solve with the input's (or the current mesh's) factorisation, per global
+  // solve of the three flat-chart systems, per conjugate-gradient step. The
+  // small local solves of flattening (ChartPlanes::solve_near) are not
+  // counted, like their factorisations.
+  int back_substitutions = 0;
   std::string solver;      // the factorisation used (sparse_cholesky.h)
   PhaseSeconds seconds;
   StageSeconds stages;
-  // With DeformOptions::time_references: one back-substitution (3 right-hand
-  // sides) with the input's factorisation and one measurement of every figure
-  // of the result, in seconds (the median of three); 0 otherwise.
-  double reference_solve_seconds = 0.0, reference_measure_seconds = 0.0;
+  // With DeformOptions::time_references: one numeric factorisation of the
+  // input's Laplacian, one back-substitution (3 right-hand sides) with it and
+  // one measurement of every figure of the result, in seconds (the median of
+  // three); 0 otherwise.
+  double reference_factorize_seconds = 0.0, reference_solve_seconds = 0.0, reference_measure_seconds = 0.0;
 };
 
 // Called after each iteration with its number (from 1), the positions and their

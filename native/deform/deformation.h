@@ -45,6 +45,29 @@ class Stopwatch {
   std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };
 
+// Charges the time from its construction to its destruction to a stage of
+// its own (StageSeconds: flatten, untangle) and sets it apart from the
+// iteration it happens in, less what timers inside it charged to theirs.
+class StageTimer {
+ public:
+  StageTimer(StageCost& cost, double& set_apart) : cost_(cost), set_apart_(set_apart), before_(set_apart) {
+    ++cost_.count;
+  }
+  ~StageTimer() {
+    const double seconds = clock_.lap() - (set_apart_ - before_);
+    cost_.seconds += seconds;
+    set_apart_ += seconds;
+  }
+  StageTimer(const StageTimer&) = delete;
+  StageTimer& operator=(const StageTimer&) = delete;
+
+ private:
+  StageCost& cost_;
+  double& set_apart_;
+  const double before_;
+  Stopwatch clock_;
+};
+
 // Below the tolerance, and not by collapsing: collapsed triangles are left out
 // of the normal figures, so a mesh squeezed flat or to a point would pass
 // (the paper's `current` variant does that to armadillo and bunny00).
@@ -87,11 +110,12 @@ struct Deformation {
   std::vector<int> acceptable_labels;
   int untangled_at = 0;  // the iteration whose positions were untangled
 
-  // An iteration's time goes to its stage (StageSeconds), less the attempts
-  // at flattening it made, which are a stage of their own (`flattening`).
+  // An iteration's time goes to its stage (StageSeconds), less its
+  // measurement and the flattening and untangling it did, which are stages
+  // of their own (`set_apart`: their seconds in this iteration).
   StageCost* stage = nullptr;
   Stopwatch iteration_clock;
-  double flattening = 0.0;
+  double set_apart = 0.0;
 
   const Triangles& triangles() const { return triangulation.triangles; }
 
@@ -99,7 +123,8 @@ struct Deformation {
   // where it was, isolated vertices where they were. Throws Error on a
   // non-finite solution.
   Vertices place(const Eigen::MatrixX3d& solution) const;
-  Vertices solve(const SparseCholesky& cholesky, const Eigen::MatrixX3d& rhs) const;
+  // place() of a back-substitution with `cholesky` (counted in the result).
+  Vertices solve(const SparseCholesky& cholesky, const Eigen::MatrixX3d& rhs);
 
   // The input's factorisation freed while other systems are factorised (the
   // flat charts'), so that the two are never in memory together, and
@@ -113,6 +138,10 @@ struct Deformation {
   void set_labels(std::vector<int> face_labels);
   // result.labels spread to their triangles.
   std::vector<int> per_triangle(const std::vector<int>& face_labels) const;
+
+  // The set-up's time (StageSeconds::set_up): called once, before the first
+  // iteration.
+  void begin_iterations();
 
   // Measures x (from `states` = face_states(x) when given), keeps it if
   // acceptable, charges the iteration's time to `stage` and reports to the

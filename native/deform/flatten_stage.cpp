@@ -5,33 +5,13 @@
 #include "deform/untangle_step.h"
 
 namespace polycube {
-namespace {
-
-// Adds the time from its construction to its destruction to a stage's cost,
-// and to `also`.
-class StageTimer {
- public:
-  StageTimer(StageCost& cost, double& also) : cost_(cost), also_(also) { ++cost_.count; }
-  ~StageTimer() {
-    const double seconds = clock_.lap();
-    cost_.seconds += seconds;
-    also_ += seconds;
-  }
-
- private:
-  StageCost& cost_;
-  double& also_;
-  Stopwatch clock_;
-};
-
-}  // namespace
 
 void flatten_stage(RobustRun& run, int iteration) {
   if (run.planes || run.flatten_attempts >= kMaxFlattenAttempts) return;
   Deformation& d = run.d;
   DeformResult& result = d.result;
   ++run.flatten_attempts;
-  const StageTimer timer(result.stages.flatten, d.flattening);
+  const StageTimer timer(result.stages.flatten, d.set_apart);
   run.last_attempt = iteration;
   d.release_factorization();  // restored below unless the charts end flat
   const Placement place = [&d](const Eigen::MatrixX3d& solution) { return d.place(solution); };
@@ -39,6 +19,7 @@ void flatten_stage(RobustRun& run, int iteration) {
                                    d.laplacian.matrix(), d.shift, d.quality, place, d.options.max_collapsed_share);
   result.seconds.factorize += d.phase.lap();  // nearly all of it
   result.factorizations += flat.planes->factorizations();
+  result.back_substitutions += flat.planes->solves();
   result.flatten_attempts.push_back({iteration, flat.rounds, flat.states.flipped_count, flat.collapsed_area, flat.found});
   if (!flat.found && flat.first_positions.size() > 0) {
     UntangleStep opened = untangle_step(run, flat.first_positions);

@@ -15,6 +15,7 @@ void paper_iteration(Deformation& d) {
   };
   if (d.options.variant == Variant::kFixed && !result.converged) rebuild(d.mesh.vertices);
   else result.seconds.assemble += d.phase.lap();
+  d.begin_iterations();
 
   for (int iteration = 1; iteration <= d.options.iterations && !result.converged; ++iteration) {
     if (d.options.variant == Variant::kCurrent) rebuild(d.x);

@@ -33,10 +33,17 @@ double blend_towards(RobustRun& run, const Vertices& target, bool fewer) {
   return -1.0;
 }
 
+// Counts its factorisations (the axes collapses changed, or every axis of
+// new planes) and its global solve.
 Vertices relaxed_target(RobustRun& run, ChartPlanes& planes) {
   Deformation& d = run.d;
-  return relax_flat_charts(d.mesh.vertices, d.x, d.triangles(), d.triangle_labels, d.weights, d.laplacian.matrix(),
-                           d.shift, planes, [&d](const Eigen::MatrixX3d& solution) { return d.place(solution); });
+  const int factorized = planes.factorizations();
+  Vertices target =
+      relax_flat_charts(d.mesh.vertices, d.x, d.triangles(), d.triangle_labels, d.weights, d.laplacian.matrix(),
+                        d.shift, planes, [&d](const Eigen::MatrixX3d& solution) { return d.place(solution); });
+  d.result.factorizations += planes.factorizations() - factorized;
+  ++d.result.back_substitutions;
+  return target;
 }
 
 }  // namespace
@@ -53,7 +60,6 @@ bool relax_stage(RobustRun& run, int iteration) {
     auto free_planes = run.charts_like(*run.planes);
     run.planes->release();  // not in memory beside the free planes' factors; refactorised if needed again
     const Vertices free_target = relaxed_target(run, *free_planes);
-    result.factorizations += free_planes->factorizations();
     if (blend_towards(run, free_target, true) >= 0.0) {
       run.planes = std::move(free_planes);
       found = true;

@@ -36,8 +36,12 @@ RobustRun::RobustRun(Deformation& deformation) : d(deformation) {
   if (!result.converged) d.factorization.factorize(d.laplacian.matrix());
   result.seconds.factorize += d.phase.lap();
   state = d.quality.face_states(d.x);
-  adjacency = face_neighbours(mesh_adjacency(d.mesh.faces, d.n), d.mesh.faces.count());
   diagonal = (d.mesh.vertices.colwise().maxCoeff() - d.mesh.vertices.colwise().minCoeff()).norm();
+}
+
+const std::vector<std::vector<int>>& RobustRun::face_adjacency() {
+  if (adjacency_.empty()) adjacency_ = face_neighbours(mesh_adjacency(d.mesh.faces, d.n), d.mesh.faces.count());
+  return adjacency_;
 }
 
 FoldFreeStep RobustRun::controlled_step(const Vertices& target) const {
@@ -54,6 +58,7 @@ std::unique_ptr<ChartPlanes> RobustRun::charts_like(const ChartPlanes& same_char
 
 void robust_iteration(Deformation& d) {
   RobustRun run(d);
+  d.begin_iterations();
   DeformResult& result = d.result;
   bool exact = false;  // fitting done
   int fit_iterations = 0, since_progress = 0;
@@ -85,7 +90,7 @@ void robust_iteration(Deformation& d) {
       since_progress = 0;
       std::vector<int> labels = result.labels;
       const std::vector<int> changed =
-          relabel_stalled_faces(d.x, d.triangulation, run.adjacency, run.state, kRepairDeviationDeg, labels);
+          relabel_stalled_faces(d.x, d.triangulation, run.face_adjacency(), run.state, kRepairDeviationDeg, labels);
       if (!changed.empty()) {
         d.set_labels(std::move(labels));
         run.state = d.quality.face_states(d.x);

@@ -36,7 +36,6 @@ struct RobustRun {
 
   Deformation& d;
   FaceStates state;                                // of d.x
-  std::vector<std::vector<int>> adjacency;         // polygon faces' neighbours
   double diagonal = 0.0;                           // of the input's bounding box
   ContinuousFallback continuous;                   // the current mesh's Laplacian, when needed
   // Once flat (flatten_stage): the charts and collapses, factorised.
@@ -44,12 +43,18 @@ struct RobustRun {
   bool relaxed = false, uncollapsed = false, untangle_tried = false;
   int flatten_attempts = 0, last_attempt = 0;
 
+  // The polygon faces' neighbours, built on the first call: only a run that
+  // stalls needs them (about 1 MiB and 2% of B0's run otherwise).
+  const std::vector<std::vector<int>>& face_adjacency();
   // A fold-free step towards `target` (fold_free_step.h), put back on the
   // components' centroids, which per-vertex steps move a little.
   FoldFreeStep controlled_step(const Vertices& target) const;
   // The charts of the current labels without collapses, to factorise with
   // the orderings of `same_charts` (of the same labels).
   std::unique_ptr<ChartPlanes> charts_like(const ChartPlanes& same_charts) const;
+
+ private:
+  std::vector<std::vector<int>> adjacency_;
 };
 
 // The whole robust run on a Deformation just built with variant kRobust.

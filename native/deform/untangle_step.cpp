@@ -5,8 +5,9 @@
 
 namespace polycube {
 
-UntangleStep untangle_step(const RobustRun& run, const Vertices& flat) {
-  const Deformation& d = run.d;
+UntangleStep untangle_step(RobustRun& run, const Vertices& flat) {
+  Deformation& d = run.d;
+  const StageTimer timer(d.result.stages.untangle, d.set_apart);
   UntangleStep opened;
   opened.positions = d.place(untangle_flat_charts(d.mesh.vertices, flat, d.triangles(), d.triangle_labels).positions);
   opened.states = d.quality.face_states(opened.positions);

@@ -20,6 +20,7 @@ struct UntangleStep {
   bool fold_free = false;
 };
 
-UntangleStep untangle_step(const RobustRun& run, const Vertices& flat);
+// Its time is a stage of its own (StageSeconds::untangle).
+UntangleStep untangle_step(RobustRun& run, const Vertices& flat);
 
 }  // namespace polycube

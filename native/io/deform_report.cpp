@@ -46,7 +46,8 @@ Json deform_report(const PolygonMesh& mesh, const DeformResult& r, const DeformO
                {"collapsed_on_purpose", r.collapsed_on_purpose},
                {"unlabelled_faces", r.unlabelled_faces},
                {"solver", r.solver},
-               {"factorizations", r.factorizations}};
+               {"factorizations", r.factorizations},
+               {"back_substitutions", r.back_substitutions}};
   add_figures(json, r.figures);
   add_faces(json, "unconverged_faces", r.unconverged_faces);
   add_faces(json, "flipped_face_ids", r.flipped_faces);
@@ -63,14 +64,16 @@ Json deform_report(const PolygonMesh& mesh, const DeformResult& r, const DeformO
                      {"factorize", r.seconds.factorize}, {"rotations", r.seconds.rotations},
                      {"solve", r.seconds.solve},         {"measure", r.seconds.measure}};
   Json& stages = json["stages"] = Json::object();
-  const std::pair<const char*, const StageCost*> stage_costs[] = {{"fit", &r.stages.fit},
-                                                                  {"continuous", &r.stages.continuous},
-                                                                  {"relax", &r.stages.relax},
-                                                                  {"flatten", &r.stages.flatten}};
+  const std::pair<const char*, const StageCost*> stage_costs[] = {
+      {"set_up", &r.stages.set_up},     {"fit", &r.stages.fit},           {"continuous", &r.stages.continuous},
+      {"relax", &r.stages.relax},       {"flatten", &r.stages.flatten},   {"untangle", &r.stages.untangle},
+      {"measure", &r.stages.measure}};
   for (const auto& [name, cost] : stage_costs) stages[name] = {{"count", cost->count}, {"seconds", cost->seconds}};
   stages["current_steps"] = r.stages.current_steps;
   if (options.time_references)
-    json["reference_seconds"] = {{"solve", r.reference_solve_seconds}, {"measure", r.reference_measure_seconds}};
+    json["reference_seconds"] = {{"factorize", r.reference_factorize_seconds},
+                                 {"solve", r.reference_solve_seconds},
+                                 {"measure", r.reference_measure_seconds}};
   return json;
 }
 

@@ -162,6 +162,41 @@ TEST(DeformDefault, B0WithItsPublishedLabelingBecomesAPolycube) {
   EXPECT_LT(r.figures.edge_error, 0.1);
 }
 
+// The report's cost figures (docs/design.md section 4, section 2.6 "Cost"):
+// the stages share the run's time without counting any of it twice, every
+// iteration is measured once, and the floor's units are there. `fixed`
+// back-substitutes once an iteration with its one factorisation; `robust`
+// at least once an iteration.
+TEST(DeformDefault, B0StagesPartitionTheRunAndCountItsBackSubstitutions) {
+  const std::string dir = std::string(POLYCUBE_SHARED_DATA) + "/B0";
+  SKIP_UNLESS_EXISTS(dir + "/surface.obj");
+  const PolygonMesh mesh = read_mesh(dir + "/surface.obj");
+  const std::vector<int> labels = read_labels(dir + "/labeling.txt", mesh.faces.count());
+  DeformOptions robust = options(Variant::kRobust);
+  robust.time_references = true;
+  const DeformResult r = deform(mesh, labels, robust);
+  const StageSeconds& s = r.stages;
+  EXPECT_EQ(s.set_up.count, 1);
+  EXPECT_EQ(s.measure.count, r.iterations);
+  EXPECT_EQ(s.fit.count + s.continuous.count + s.relax.count, r.iterations);
+  EXPECT_GE(s.flatten.count, 1);
+  const double sum = s.set_up.seconds + s.fit.seconds + s.continuous.seconds + s.relax.seconds +
+                     s.flatten.seconds + s.untangle.seconds + s.measure.seconds;
+  for (const StageCost* cost : {&s.set_up, &s.fit, &s.relax, &s.flatten, &s.measure}) EXPECT_GT(cost->seconds, 0.0);
+  EXPECT_LE(sum, r.seconds.total);
+  EXPECT_GT(sum, 0.7 * r.seconds.total);  // the rest: the result's own measurement
+  EXPECT_GE(r.back_substitutions, r.iterations);
+  EXPECT_GT(r.reference_factorize_seconds, r.reference_solve_seconds);
+  EXPECT_GT(r.reference_solve_seconds, 0.0);
+
+  const DeformResult fixed = deform(mesh, labels, options(Variant::kFixed, 7, 0.0));
+  EXPECT_EQ(fixed.iterations, 7);
+  EXPECT_EQ(fixed.factorizations, 1);
+  EXPECT_EQ(fixed.back_substitutions, 7);
+  EXPECT_EQ(fixed.stages.continuous.count, 7);
+  EXPECT_EQ(fixed.stages.measure.count, 7);
+}
+
 TEST(Deform, ComponentsKeepTheirCentroidsAndIsolatedVerticesStay) {
   PolygonMesh a = test_meshes::uv_sphere(16, 8), b = test_meshes::uv_sphere(16, 8, Eigen::Vector3d(0.5, 0.5, 0.5));
   PolygonMesh both;
