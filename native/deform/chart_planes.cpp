@@ -23,8 +23,14 @@ void ChartPlanes::join(int axis, int a, int b) {
   }
 }
 
-void ChartPlanes::use_chart_orderings(const ChartPlanes& same_charts) {
+void ChartPlanes::use_chart_factors(const ChartPlanes& same_charts) {
   chart_orderings_ = same_charts.chart_orderings_;
+  for (int axis = 0; axis < 3; ++axis) {
+    if (!same_charts.charts_only_[axis] || same_charts.changed_[axis] || !same_charts.cholesky_[axis]) continue;
+    cholesky_[axis] = same_charts.cholesky_[axis];
+    unknown_[axis] = same_charts.unknown_[axis];
+    changed_[axis] = false;
+  }
 }
 
 void ChartPlanes::release() {
@@ -117,14 +123,16 @@ void ChartPlanes::factorize(const Eigen::SparseMatrix<double>& laplacian) {
       unknown[v] = of_root[r];
     }
     const Eigen::SparseMatrix<double> reduced = reduced_matrix(laplacian, unknown, m);
-    cholesky_[axis] = std::make_unique<SparseCholesky>();
+    cholesky_[axis].reset();  // before the new factor: never two of one axis in memory
+    auto cholesky = std::make_shared<SparseCholesky>();
     if (charts_only_[axis]) {
-      cholesky_[axis]->analyze(reduced, chart_orderings_[axis]);  // none known yet: computed
-      chart_orderings_[axis] = cholesky_[axis]->ordering();
+      cholesky->analyze(reduced, chart_orderings_[axis]);  // none known yet: computed
+      chart_orderings_[axis] = cholesky->ordering();
     } else {
-      cholesky_[axis]->analyze(reduced);
+      cholesky->analyze(reduced);
     }
-    cholesky_[axis]->factorize(reduced);
+    cholesky->factorize(reduced);
+    cholesky_[axis] = std::move(cholesky);
   }
 }
 

@@ -45,12 +45,15 @@ class ChartPlanes {
   int factorizations() const { return factorizations_; }
   // Calls of solve() (three back-substitutions each, one per axis).
   int solves() const { return solves_; }
-  // Another ChartPlanes of the same labels (its charts without this one's
-  // collapses) factorises those systems with `same_charts`' orderings
+  // Another ChartPlanes of the same labels and Laplacian (its charts without
+  // this one's collapses) shares `same_charts`' factors of the axes it has
+  // not collapsed, and factorises the others with their orderings
   // (sparse_cholesky.h) instead of computing them again: the same factors,
-  // for less.
-  void use_chart_orderings(const ChartPlanes& same_charts);
-  // Frees the factors until the next factorize(), which redoes every axis.
+  // bit for bit, for nothing or for less. Factors it has replaced are not
+  // kept for this: two of one axis would be in memory at once.
+  void use_chart_factors(const ChartPlanes& same_charts);
+  // Frees the factors (shared ones stay with their other owner) until the
+  // next factorize(), which redoes every axis.
   void release();
   // Minimises x^T L x / 2 - b^T x over the unknowns whose vertices all lie
   // in `region`, every other vertex held at its value in `positions` (with
@@ -72,7 +75,7 @@ class ChartPlanes {
   Triangles triangles_;
   mutable std::array<UnionFind, 3> sets_;  // per axis: vertices sharing that coordinate
   std::array<std::vector<int>, 3> unknown_;         // per axis and vertex: its unknown
-  std::array<std::unique_ptr<SparseCholesky>, 3> cholesky_;
+  std::array<std::shared_ptr<const SparseCholesky>, 3> cholesky_;
   std::array<bool, 3> changed_ = {true, true, true};
   // Per axis: nothing collapsed since the construction (the charts alone),
   // and the ordering of the charts' system once known.

@@ -52,7 +52,7 @@ FoldFreeStep RobustRun::controlled_step(const Vertices& target) const {
 
 std::unique_ptr<ChartPlanes> RobustRun::charts_like(const ChartPlanes& same_charts) const {
   auto planes = std::make_unique<ChartPlanes>(d.n, d.triangles(), d.triangle_labels);
-  planes->use_chart_orderings(same_charts);
+  planes->use_chart_factors(same_charts);
   return planes;
 }
 
