@@ -5,6 +5,7 @@
 // it wraps whole runs.
 #include <algorithm>
 #include <memory>
+#include <utility>
 
 #include "deform/deform.h"
 #include "deform/quality.h"
@@ -47,6 +48,31 @@ struct RerunMesh {
   std::vector<std::vector<int>> neighbours;
 };
 
+// What `from` cost, added to `into`: a silent run's time, solves and
+// stages count whether it is kept or not (the report's stages then still
+// add up to its total, and bench's floor counts every back-substitution).
+void add_cost(DeformResult& into, const DeformResult& from) {
+  PhaseSeconds& t = into.seconds;
+  const PhaseSeconds& u = from.seconds;
+  t.total += u.total, t.assemble += u.assemble, t.factorize += u.factorize, t.rotations += u.rotations;
+  t.solve += u.solve, t.measure += u.measure;
+  into.factorizations += from.factorizations;
+  into.back_substitutions += from.back_substitutions;
+  StageSeconds& a = into.stages;
+  const StageSeconds& b = from.stages;
+  for (auto [x, y] : {std::pair{&a.set_up, &b.set_up},
+                      {&a.fit, &b.fit},
+                      {&a.continuous, &b.continuous},
+                      {&a.relax, &b.relax},
+                      {&a.flatten, &b.flatten},
+                      {&a.untangle, &b.untangle},
+                      {&a.measure, &b.measure}}) {
+    x->count += y->count;
+    x->seconds += y->seconds;
+  }
+  a.current_steps += b.current_steps;
+}
+
 // A run the caller does not see (its iterations start again from the
 // input, and a caller that keeps every iteration, as shape keys, would get a
 // run it may not keep); only `stop_requested` reaches it. Not converged
@@ -68,7 +94,7 @@ DeformResult silent_run(const PolygonMesh& mesh, const std::vector<int>& labels,
 void keep_as_next_iteration(const PolygonMesh& mesh, const Triangulation& triangulation, const std::vector<int>& labels,
                             const IterationCallback& callback, DeformResult again, DeformResult& result) {
   const int offset = result.iterations;
-  again.seconds.total += result.seconds.total;
+  add_cost(again, result);
   std::vector<int> given = labels;
   const std::vector<int> nearest = nearest_labels(mesh);
   for (size_t f = 0; f < given.size(); ++f)
@@ -80,7 +106,6 @@ void keep_as_next_iteration(const PolygonMesh& mesh, const Triangulation& triang
   again.second_run_iterations = result.second_run_iterations + again.iterations;
   again.iterations = again.kept_iteration = offset + 1;
   if (again.flat_iteration > 0) again.flat_iteration = offset + 1;
-  again.factorizations += result.factorizations;
   again.unlabelled_faces = result.unlabelled_faces;  // the silent run was given them filled
   again.last_resort = again.last_resort || result.last_resort;
   std::vector<DeformResult::FlattenAttempt> attempts = result.flatten_attempts;
@@ -136,7 +161,7 @@ bool rerun_collapsed(const PolygonMesh& mesh, const RerunMesh& shared, const std
   DeformResult again = silent_run(mesh, moved, options);
   const bool better = again.converged && again.figures.collapsed_area < result.figures.collapsed_area;
   if (!better) {
-    result.seconds.total += again.seconds.total;
+    add_cost(result, again);
     return false;
   }
   std::vector<int> relabelled = result.relabelled_faces;
@@ -177,7 +202,7 @@ DeformResult deform(const PolygonMesh& input, const std::vector<int>& labels, co
       keep_as_next_iteration(mesh, shared->triangulation, labels, unit_callback, std::move(again), result);
       unit_options = last_resort;  // the further runs below flatten the same way
     } else {
-      result.seconds.total += again.seconds.total;
+      add_cost(result, again);
     }
   }
   if (robust && options.relabel_collapsed && result.converged && result.figures.collapsed_faces > 0) {
