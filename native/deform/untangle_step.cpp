@@ -5,10 +5,15 @@
 
 namespace polycube {
 
-UntangleStep untangle_step(const RobustRun& run, const Vertices& flat) {
+UntangleStep untangle_step(const RobustRun& run, const Vertices& flat, const CollapseBound& bound) {
   const Deformation& d = run.d;
   UntangleStep opened;
-  opened.positions = d.place(untangle_flat_charts(d.mesh.vertices, flat, d.triangles(), d.triangle_labels).positions);
+  const UntangledCharts untangled =
+      untangle_flat_charts(d.mesh.vertices, flat, d.triangles(), d.triangle_labels, kUntangleRounds,
+                           kUntangleLocalShare, bound);
+  opened.rounds = untangled.rounds;
+  if (untangled.refused) return opened;
+  opened.positions = d.place(untangled.positions);
   opened.states = d.quality.face_states(opened.positions);
   opened.fold_free = opened.states.flipped_count == 0 &&
                      d.quality.measure(opened.positions, opened.states, false).folded_edges <=
