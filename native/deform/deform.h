@@ -168,6 +168,11 @@ struct DeformResult {
     int iteration = 0, rounds = 0, folds_left = 0;
     double collapsed_area = 0.0;  // share of the input's area
     bool kept = false;
+    // Its cost: numeric factorisations of the flat solves, minimisation
+    // rounds untangling a refused flat solve (untangle_flat_charts.h; 0:
+    // not untangled), seconds of the whole attempt and of the untangling.
+    int factorizations = 0, untangle_rounds = 0;
+    double seconds = 0.0, untangle_seconds = 0.0;
   };
   std::vector<FlattenAttempt> flatten_attempts;
   int factorizations = 0;  // numeric factorisations of a Laplacian

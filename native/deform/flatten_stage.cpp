@@ -12,6 +12,7 @@ void flatten_stage(RobustRun& run, int iteration) {
   DeformResult& result = d.result;
   ++run.flatten_attempts;
   const StageTimer timer(result.stages.flatten, d.set_apart);
+  Stopwatch clock;  // the attempt's own seconds
   run.last_attempt = iteration;
   d.release_factorization();  // restored below unless the charts end flat
   const Placement place = [&d](const Eigen::MatrixX3d& solution) { return d.place(solution); };
@@ -21,20 +22,27 @@ void flatten_stage(RobustRun& run, int iteration) {
   result.factorizations += flat.planes->factorizations();
   result.back_substitutions += flat.planes->solves();
   result.flatten_attempts.push_back({iteration, flat.rounds, flat.states.flipped_count, flat.collapsed_area, flat.found});
+  DeformResult::FlattenAttempt& attempt = result.flatten_attempts.back();
+  attempt.factorizations = flat.planes->factorizations();
   if (!flat.found && flat.first_positions.size() > 0) {
-    UntangleStep opened = untangle_step(run, flat.first_positions);
-    result.seconds.solve += d.phase.lap();
+    CollapseBound bound;
+    bound.area = d.options.max_collapsed_share;  // refused above, below
+    UntangleStep opened = untangle_step(run, flat.first_positions, bound);
+    attempt.untangle_seconds = d.phase.lap();
+    attempt.untangle_rounds = opened.rounds;
+    result.seconds.solve += attempt.untangle_seconds;
     if (opened.fold_free && d.quality.collapsed_area_fraction(opened.states) <= d.options.max_collapsed_share) {
       flat.positions = std::move(opened.positions);
       flat.states = std::move(opened.states);
       flat.planes = run.charts_like(*flat.planes);
-      flat.found = true;
+      flat.found = attempt.kept = true;
       result.untangled = true;
       d.untangled_at = iteration;
     }
   }
   if (!flat.found) {
     d.restore_factorization();  // the continuous stage goes on
+    attempt.seconds = clock.lap();
     return;
   }
   d.x = std::move(flat.positions);
@@ -44,6 +52,7 @@ void flatten_stage(RobustRun& run, int iteration) {
   run.continuous.current_factorization.release();
   result.flat_iteration = iteration;
   result.collapsed_on_purpose = flat.collapsed_on_purpose;
+  attempt.seconds = clock.lap();
 }
 
 }  // namespace polycube

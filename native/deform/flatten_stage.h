@@ -3,7 +3,8 @@
 // (flatten_charts.h: every chart flat, slivers that would turn over
 // collapsed). When the linear solve is refused (it folds or collapses too
 // much), its first, global solution is flat on the same charts: untangled
-// inside them (untangle_step.h) it may have room for all.
+// inside them (untangle_step.h) it may have room for all; untangling stops
+// as soon as more area is put on a line than a kept result may collapse.
 //
 // Inputs: a RobustRun at `iteration`. Outputs: when a flat shape is kept,
 // the run's positions, states and planes (then only the flat charts'

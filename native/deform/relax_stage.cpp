@@ -70,7 +70,9 @@ bool relax_stage(RobustRun& run, int iteration) {
   if ((!found || run.relaxed) && !run.untangle_tried && count(run.state.collapsed) > 0 &&
       (!result.untangled || d.quality.collapsed_area_fraction(run.state) > kUntangleAgainAbove)) {
     run.untangle_tried = true;
-    UntangleStep opened = untangle_step(run, d.x);
+    CollapseBound bound;
+    bound.triangles = count(run.state.collapsed) - 1;  // kept only with fewer collapsed, below
+    UntangleStep opened = untangle_step(run, d.x, bound);
     if (opened.fold_free && count(opened.states.collapsed) < count(run.state.collapsed)) {
       d.x = std::move(opened.positions);
       run.state = std::move(opened.states);

@@ -77,7 +77,8 @@ double determinant(const Triangle& t, const Eigen::VectorXd& y, Eigen::Matrix2d*
 }  // namespace
 
 UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat, const Triangles& triangles,
-                                     const std::vector<int>& triangle_labels, int max_rounds, double local_share) {
+                                     const std::vector<int>& triangle_labels, int max_rounds, double local_share,
+                                     const CollapseBound& bound) {
   const int n = static_cast<int>(input.rows());
   const Eigen::Index count = triangles.rows();
   UntangledCharts result;
@@ -170,6 +171,10 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
   std::vector<int> slot(unknowns);  // unknown -> entry of the minimised vector
   Eigen::VectorXd y;
   Eigen::VectorXd slot_users;  // vertices using each slot
+  // Triangles of positive input area on a line (collapsed whatever follows)
+  // and their share of the input's area (the weights sum to 1).
+  int lined = 0;
+  double lined_area = 0.0;
   auto rebuild = [&]() {
     std::vector<int> root_slot(unknowns, -1);
     int slots = 0;
@@ -186,17 +191,28 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
     slot_users = users;
     active.clear();
     source.clear();
+    lined = 0;
+    lined_area = 0.0;
     for (size_t i = 0; i < all.size(); ++i) {
       if (!(all[i].weight > 0.0)) continue;
       Triangle mapped = all[i];
       for (auto& corner : mapped.unknown)
         for (int& u : corner) u = slot[u];
-      if (on_a_line(mapped)) continue;
+      if (on_a_line(mapped)) {
+        ++lined;
+        lined_area += all[i].weight;
+        continue;
+      }
       active.push_back(mapped);
       source.push_back(static_cast<int>(i));
     }
   };
+  // Past the caller's bound: rounding between this sum and the caller's own
+  // measure of the same areas is far below the margin.
+  auto past_bound = [&]() { return lined > bound.triangles || lined_area > bound.area + 1e-9; };
   rebuild();
+  result.refused = past_bound();
+  if (result.refused) return result;
 
   double eps = kFirstEps;
   // Per thread: its triangles' share of the gradient, summed afterwards.
@@ -345,6 +361,11 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
       }
       result.put_on_a_line += static_cast<int>(no_room.size());
       rebuild();
+      if (past_bound()) {
+        result.refused = true;
+        result.untangled = false;
+        break;
+      }
     }
     // Garanzha et al.'s update: the barrier closes in on the smallest determinant.
     const double mu = (1.0 - decrease) * 0.5 * (smallest + std::sqrt(eps * eps + smallest * smallest));

@@ -5,11 +5,16 @@
 
 namespace polycube {
 
-UntangleStep untangle_step(RobustRun& run, const Vertices& flat) {
+UntangleStep untangle_step(RobustRun& run, const Vertices& flat, const CollapseBound& bound) {
   Deformation& d = run.d;
   const StageTimer timer(d.result.stages.untangle, d.set_apart);
   UntangleStep opened;
-  opened.positions = d.place(untangle_flat_charts(d.mesh.vertices, flat, d.triangles(), d.triangle_labels).positions);
+  const UntangledCharts untangled =
+      untangle_flat_charts(d.mesh.vertices, flat, d.triangles(), d.triangle_labels, kUntangleRounds,
+                           kUntangleLocalShare, bound);
+  opened.rounds = untangled.rounds;
+  if (untangled.refused) return opened;
+  opened.positions = d.place(untangled.positions);
   opened.states = d.quality.face_states(opened.positions);
   opened.fold_free = opened.states.flipped_count == 0 &&
                      d.quality.measure(opened.positions, opened.states, false).folded_edges <=

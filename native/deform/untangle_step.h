@@ -4,11 +4,15 @@
 // the linear flat solve is refused, and relax_stage.h once relaxed.
 //
 // Inputs: a RobustRun (its mesh and labels) and `flat`, an exact polycube
-// of them. Output: the opened shape, its states, and whether it is
-// fold-free: nothing turned over and no more edges folded than in the input.
+// of them; `bound`: the collapses past which the caller refuses the result
+// (then untangling stops as soon as that is certain, and the step is not
+// fold-free, its shape not computed). Output: the opened shape, its states,
+// and whether it is fold-free: nothing turned over and no more edges folded
+// than in the input.
 #pragma once
 
 #include "deform/quality.h"
+#include "deform/untangle_flat_charts.h"
 
 namespace polycube {
 
@@ -18,9 +22,10 @@ struct UntangleStep {
   Vertices positions;
   FaceStates states;  // of `positions`
   bool fold_free = false;
+  int rounds = 0;  // of untangle_flat_charts
 };
 
 // Its time is a stage of its own (StageSeconds::untangle).
-UntangleStep untangle_step(RobustRun& run, const Vertices& flat);
+UntangleStep untangle_step(RobustRun& run, const Vertices& flat, const CollapseBound& bound = {});
 
 }  // namespace polycube

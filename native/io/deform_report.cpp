@@ -59,7 +59,11 @@ Json deform_report(const PolygonMesh& mesh, const DeformResult& r, const DeformO
                         {"rounds", a.rounds},
                         {"folds_left", a.folds_left},
                         {"collapsed_area", a.collapsed_area},
-                        {"kept", a.kept}});
+                        {"kept", a.kept},
+                        {"factorizations", a.factorizations},
+                        {"untangle_rounds", a.untangle_rounds},
+                        {"seconds", a.seconds},
+                        {"untangle_seconds", a.untangle_seconds}});
   json["seconds"] = {{"total", r.seconds.total},         {"assemble", r.seconds.assemble},
                      {"factorize", r.seconds.factorize}, {"rotations", r.seconds.rotations},
                      {"solve", r.seconds.solve},         {"measure", r.seconds.measure}};

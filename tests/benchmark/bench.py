@@ -213,6 +213,11 @@ def report_row(name, variant, report):
         row[f"{stage}_per"] = per(cost["seconds"], cost["count"])
     row["current_steps"] = stages.get("current_steps", 0)
     row["back_substitutions"] = report.get("back_substitutions", 0)
+    # Per attempt at flattening: its seconds, of them untangling, and the rounds of each.
+    row["flatten_attempts"] = [
+        {key: attempt.get(key) for key in ("iteration", "kept", "rounds", "factorizations", "untangle_rounds",
+                                           "seconds", "untangle_seconds")}
+        for attempt in report.get("flatten_attempts", [])]
     reference = report.get("reference_seconds")
     if reference:
         row["reference_factorize"] = reference.get("factorize", float("nan"))
@@ -250,6 +255,10 @@ def checks(rows, iterations):
         attempts = row.get("flatten_count", 0)
         flattening = (f"; flattening {attempts} attempt{'s' if attempts != 1 else ''} at "
                       f"{row['flatten_per']:.1f} s each" if attempts else "")
+        untangled = [a for a in row.get("flatten_attempts", []) if a.get("untangle_rounds")]
+        if untangled:
+            flattening += " (untangling " + ", ".join(
+                f"{a['untangle_rounds']} rounds {a['untangle_seconds']:.1f} s" for a in untangled) + ")"
         if not row.get("continuous_count"):
             # Flat before any continuous iteration (or no run at all): nothing to hold to the target.
             lines.append(f"- {model}: no continuous iteration ({row['iterations']} iterations, "

@@ -140,5 +140,41 @@ TEST(UntangleFlatCharts, LocalRoundsKeepTheContract) {
 }
 
 
+
+TEST(UntangleFlatCharts, StopsOnceTheCollapsesPassTheCallersBound) {
+  // The block with a triangle facing the wrong way (above): it ends on a
+  // line. Bounded at no triangle on a line, the rounds stop when it is put
+  // there, refused, after fewer rounds; bounded at what it collapses in
+  // the end, nothing changes.
+  Block b = block();
+  const auto relabelled = std::find(b.labels.begin(), b.labels.end(), 1);
+  ASSERT_NE(relabelled, b.labels.end());
+  *relabelled = 0;
+  const UntangledCharts unbounded = untangle_flat_charts(b.vertices, b.vertices, b.triangles, b.labels);
+  ASSERT_GT(unbounded.put_on_a_line, 0);
+  ASSERT_FALSE(unbounded.refused);
+  CollapseBound none;
+  none.triangles = 0;
+  const UntangledCharts refused =
+      untangle_flat_charts(b.vertices, b.vertices, b.triangles, b.labels, kUntangleRounds, kUntangleLocalShare, none);
+  EXPECT_TRUE(refused.refused);
+  EXPECT_FALSE(refused.untangled);
+  EXPECT_LT(refused.rounds, unbounded.rounds);
+  CollapseBound area;
+  area.area = 1e-6;  // the triangle's share of the area is larger
+  EXPECT_TRUE(untangle_flat_charts(b.vertices, b.vertices, b.triangles, b.labels, kUntangleRounds,
+                                   kUntangleLocalShare, area)
+                  .refused);
+  CollapseBound enough;
+  // As many as the unbounded result collapses (those put on a line and any
+  // their shared unknowns put on a line with them).
+  enough.triangles = QualityMeasure(b.vertices, b.triangles, b.labels).measure(unbounded.positions).collapsed_faces;
+  const UntangledCharts same =
+      untangle_flat_charts(b.vertices, b.vertices, b.triangles, b.labels, kUntangleRounds, kUntangleLocalShare, enough);
+  EXPECT_FALSE(same.refused);
+  EXPECT_EQ(same.rounds, unbounded.rounds);
+  EXPECT_EQ(same.positions, unbounded.positions);
+}
+
 }  // namespace
 }  // namespace polycube
