@@ -87,10 +87,12 @@ struct DeformOptions {
   // six further runs).
   bool relabel_collapsed = true;
   // Robust variant: a flattening that collapses more than this share of the
-  // area is refused (the continuous stage goes on instead). A run that ends
-  // without an exact polycube is run once more with the share raised to
-  // kLastResortCollapsedShare (docs/design.md section 2.6, stage 9).
+  // area is refused (the continuous stage goes on instead).
   double max_collapsed_share = 0.12;
+  // Robust variant: a run that ends without an exact polycube is run once
+  // more with that share raised to one half, and kept when it is exact
+  // (docs/design.md section 2.6, stage 9); false keeps the first run.
+  bool last_resort = true;
   // Polled after every iteration of those further runs, which the callback
   // does not see: returning true stops them, keeping the run before (Esc in
   // Blender). The callback stops the first run.
@@ -182,7 +184,7 @@ struct DeformResult {
   // small local solves of flattening (ChartPlanes::solve_near) are not
   // counted, like their factorisations.
   int back_substitutions = 0;
-  std::string solver;      // the factorisation used (sparse_cholesky.h)
+  std::string solver;  // the factorisation used (sparse_cholesky.h)
   PhaseSeconds seconds;
   StageSeconds stages;
   // With DeformOptions::time_references: one numeric factorisation of the

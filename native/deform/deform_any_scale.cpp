@@ -191,7 +191,8 @@ DeformResult deform(const PolygonMesh& input, const std::vector<int>& labels, co
   DeformResult result = deform_in_unit_box(mesh, labels, unit_options, unit_callback);
   const bool robust = options.variant == Variant::kRobust;
   std::unique_ptr<RerunMesh> shared;
-  if (robust && !result.converged && !result.stopped && unit_options.max_collapsed_share < kLastResortCollapsedShare &&
+  if (robust && options.last_resort && !result.converged && !result.stopped &&
+      unit_options.max_collapsed_share < kLastResortCollapsedShare &&
       !(options.stop_requested && options.stop_requested())) {
     DeformOptions last_resort = unit_options;
     last_resort.max_collapsed_share = kLastResortCollapsedShare;
