@@ -155,8 +155,8 @@ std::vector<int> merge_tiny_charts(const MeshAdjacency& adjacency, const LabelEn
   int score = violation_score(adjacency, labels);
   const std::vector<std::vector<int>> edges_of_face = face_edges(adjacency, face_count);
   for (int move = 0; move < max_moves; ++move) {
-    const Charts ch = charts(adjacency, labels);
     ViolationDelta delta(adjacency, edges_of_face, labels);
+    const Charts& ch = delta.charts();
     std::vector<double> chart_area(ch.count(), 0.0);
     std::vector<std::vector<int>> chart_faces(ch.count()), neighbours(ch.count());
     for (int f = 0; f < face_count; ++f) {
@@ -229,14 +229,11 @@ std::vector<int> Greedy::run(std::vector<int> labels, int& score, int max_moves,
                              std::vector<Stuck>* stuck) {
   const int vertex_count = static_cast<int>(adjacency.vertex_offsets.size()) - 1;
   for (int round = 0; round < max_moves && score > 0 && budget > 0; ++round) {
-    const Charts ch = charts(adjacency, labels);
+    ViolationDelta delta(adjacency, edges_of_face, labels);
+    const Charts& ch = delta.charts();
     const LabelValidation validation = validate_labels(adjacency, ch, vertex_count);
-    const std::vector<std::vector<int>> faces_of_chart = chart_faces(ch);
-    std::vector<std::vector<int>> neighbours(ch.count());
-    for (const ChartBoundary& b : chart_boundaries(adjacency, ch)) {
-      neighbours[b.charts[0]].push_back(b.charts[1]);
-      neighbours[b.charts[1]].push_back(b.charts[0]);
-    }
+    const std::vector<std::vector<int>>& faces_of_chart = delta.faces_of_chart();
+    const std::vector<std::vector<int>>& neighbours = delta.neighbours();
     // Small things first: fixing a small chart often fixes the big one it sits
     // on, and costs less than the other way round.
     std::vector<const LabelViolation*> order;
@@ -246,7 +243,6 @@ std::vector<int> Greedy::run(std::vector<int> labels, int& score, int max_moves,
     });
     bool moved = false;
     const double current_energy = energy(labels);
-    ViolationDelta delta(adjacency, edges_of_face, labels);
     if (stuck) stuck->clear();
     for (const LabelViolation* violation : order) {
       const LabelViolation& v = *violation;
@@ -348,9 +344,9 @@ std::vector<int> simplify_charts(const MeshAdjacency& adjacency, const LabelEner
   for (double a : areas) total_area += a;
   int score = violation_score(adjacency, labels);
   for (int move = 0; move < max_moves && greedy.budget > 0; ++move) {
-    const Charts ch = charts(adjacency, labels);
-    const std::vector<std::vector<int>> faces_of_chart = chart_faces(ch);
     ViolationDelta delta(adjacency, greedy.edges_of_face, labels);
+    const Charts& ch = delta.charts();
+    const std::vector<std::vector<int>>& faces_of_chart = delta.faces_of_chart();
     std::vector<double> chart_area(ch.count(), 0.0);
     for (int f = 0; f < face_count; ++f) chart_area[ch.of_face[f]] += areas[f];
     std::vector<std::vector<int>> neighbours(ch.count());

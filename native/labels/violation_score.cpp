@@ -21,11 +21,8 @@ int corner_excess(std::vector<int>& ids) {
   return std::max(0, distinct - 3);
 }
 
-}  // namespace
-
-int violation_score(const MeshAdjacency& adjacency, const std::vector<int>& labels) {
-  // The same conditions as validate_labels, without listing faces.
-  const Charts ch = charts(adjacency, labels);
+// The same conditions as validate_labels, without listing faces.
+int violation_score(const MeshAdjacency& adjacency, const Charts& ch) {
   std::vector<std::uint64_t> pairs;
   for (int e = 0; e < adjacency.edge_count(); ++e)
     for (int i = adjacency.edge_offsets[e]; i < adjacency.edge_offsets[e + 1]; ++i)
@@ -59,6 +56,12 @@ int violation_score(const MeshAdjacency& adjacency, const std::vector<int>& labe
   return score;
 }
 
+}  // namespace
+
+int violation_score(const MeshAdjacency& adjacency, const std::vector<int>& labels) {
+  return violation_score(adjacency, charts(adjacency, labels));
+}
+
 std::vector<std::vector<int>> face_edges(const MeshAdjacency& adjacency, int face_count) {
   std::vector<std::vector<int>> result(face_count);
   for (int e = 0; e < adjacency.edge_count(); ++e)
@@ -71,7 +74,7 @@ std::vector<std::vector<int>> face_edges(const MeshAdjacency& adjacency, int fac
 
 ViolationDelta::ViolationDelta(const MeshAdjacency& adjacency, const std::vector<std::vector<int>>& edges_of_face,
                                const std::vector<int>& labels)
-    : adjacency_(adjacency), edges_of_face_(edges_of_face), charts_(charts(adjacency, labels)) {
+    : adjacency_(adjacency), edges_of_face_(edges_of_face), charts_(polycube::charts(adjacency, labels)) {
   faces_of_chart_ = chart_faces(charts_);
   neighbours_.resize(charts_.count());
   for (const ChartBoundary& b : chart_boundaries(adjacency, charts_)) {
@@ -80,7 +83,7 @@ ViolationDelta::ViolationDelta(const MeshAdjacency& adjacency, const std::vector
   }
   for (std::vector<int>& n : neighbours_) std::sort(n.begin(), n.end());
   open_side_ = charts_with_open_side(adjacency, charts_);
-  score_ = violation_score(adjacency, labels);
+  score_ = violation_score(adjacency, charts_);
   chart_stamp_.assign(charts_.count(), 0);
   face_stamp_.assign(labels.size(), 0);
   local_of_face_.assign(labels.size(), -1);

@@ -34,6 +34,10 @@ class ViolationDelta {
                  const std::vector<int>& labels);
 
   int score() const { return score_; }
+  // Of the labels given above.
+  const Charts& charts() const { return charts_; }
+  const std::vector<std::vector<int>>& faces_of_chart() const { return faces_of_chart_; }
+  const std::vector<std::vector<int>>& neighbours() const { return neighbours_; }  // per chart, ascending
 
   // `candidate` equals the labels given above outside `changed` (faces that
   // may differ; listing unchanged ones too is fine).
