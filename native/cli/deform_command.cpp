@@ -64,12 +64,17 @@ int deform_command(const std::vector<std::string>& args) {
   app.add_flag("--no-relabel-collapsed", keep_collapsed,
                "robust: keep an exact result's collapsed faces; by default the run is repeated once with\n"
                "them relabelled, and kept when less collapses (relabelled_faces lists them)");
+  bool first_run_only = false;
+  app.add_flag("--no-last-resort", first_run_only,
+               "robust: return the best state of a run that does not become an exact polycube; by default\n"
+               "it is run once more, flattening accepted up to half the area collapsed (last_resort says so)");
   app.add_flag("--time-references", options.time_references,
                "also time one back-substitution and one measurement of this mesh\n"
                "(reference_seconds: what `make bench` states an iteration's cost against)");
   if (!parse_arguments(app, args)) return 0;
   options.variant = parse_variant(variant);
   options.relabel_collapsed = !keep_collapsed;
+  options.last_resort = !first_run_only;
 
   const PolygonMesh mesh = read_mesh(input);
   if (app.count("--start")) {

@@ -140,7 +140,7 @@ py::dict figures_dict(const Figures& figures) {
 
 py::dict deform_py(const DoubleArray& vertices, const IntArray& face_indices, const IntArray& face_sizes,
                    const IntArray& labels, int iterations, double tolerance, const std::string& variant,
-                   bool relabel_collapsed, const std::optional<py::function>& callback,
+                   bool relabel_collapsed, bool last_resort, const std::optional<py::function>& callback,
                    const std::optional<py::function>& stop) {
   PolygonMesh mesh = to_mesh(vertices, face_indices, face_sizes);
   const std::vector<int> face_labels = to_labels(labels);
@@ -149,6 +149,7 @@ py::dict deform_py(const DoubleArray& vertices, const IntArray& face_indices, co
   options.tolerance_deg = tolerance;
   options.variant = parse_variant(variant);
   options.relabel_collapsed = relabel_collapsed;
+  options.last_resort = last_resort;
 
   if (stop)
     options.stop_requested = [&stop]() {
@@ -409,7 +410,8 @@ PYBIND11_MODULE(polycube_native, m) {
   m.def("deform", &deform_py, py::arg("vertices"), py::arg("face_indices"), py::arg("face_sizes"),
         py::arg("labels"), py::kw_only(), py::arg("iterations") = 100, py::arg("tolerance") = 0.5,
         py::arg("variant") = variant_name(DeformOptions{}.variant),
-        py::arg("relabel_collapsed") = DeformOptions{}.relabel_collapsed, py::arg("callback") = py::none(),
+        py::arg("relabel_collapsed") = DeformOptions{}.relabel_collapsed,
+        py::arg("last_resort") = DeformOptions{}.last_resort, py::arg("callback") = py::none(),
         py::arg("stop") = py::none(), R"(Deform a mesh towards its polycube.
 
 vertices (n, 3) float; face_indices: all face corners, flat; face_sizes: corners per face;
@@ -419,6 +421,9 @@ relabel_collapsed (robust): an exact result that collapsed faces is run once mor
 relabelled, and that run kept when less collapses (docs/design.md section 2.6, stage 8; the
 callback sees its result once, as the last iteration). stop() is polled during those runs,
 which the callback does not see; returning True stops them and keeps the run before.
+last_resort (robust): a run that does not become an exact polycube is run once more, silently,
+its flattening accepted up to half the area collapsed (stage 9; the report's last_resort says
+when that run was kept); False returns the first run's best state.
 Returns {"positions", "labels", "report"}; the report's face lists (unconverged_faces,
 flipped_face_ids, relabelled_faces) hold every id, as int32 arrays. Raises ValueError on bad input.)");
   m.def("nearest_labels", &nearest_labels_py, py::arg("vertices"), py::arg("face_indices"), py::arg("face_sizes"),

@@ -73,6 +73,20 @@ def test_b0_with_its_labeling(program):
     assert report["converged"] and report["flipped_faces"] == 0 and report["triangles"] == 19964
 
 
+def test_no_last_resort_returns_the_first_run(program, tmp_path):
+    # As the module's last_resort=False: the anchor's automatic labels make
+    # an exact polycube only through stage 9.
+    labels = tmp_path / "anchor.labels"
+    assert run(program, "label", MESHES / "anchor.off", "--output", labels).returncode == 0
+    reports = {}
+    for flags in ([], ["--no-last-resort"]):
+        result = run(program, "deform", MESHES / "anchor.off", "--labels", labels, *flags)
+        assert result.returncode == 0, result.stderr
+        reports[bool(flags)] = json.loads(result.stdout)
+    assert reports[False]["converged"] and reports[False]["last_resort"]
+    assert not reports[True]["converged"] and not reports[True]["last_resort"]
+
+
 def test_a_small_mesh_loads_no_cholmod(program, sphere_off, tmp_path):
     # CHOLMOD, OpenBLAS and gfortran cost about 5 MiB and 20 ms at start-up;
     # they come in a plugin loaded for large systems only (supernodal_factor.h).

@@ -98,6 +98,21 @@ def test_stop_ends_the_further_runs_and_keeps_the_first(native, real_mesh):
     assert further["second_run_iterations"] > 0 and further["collapsed_area"] < 0.5 * once["collapsed_area"]
 
 
+def test_last_resort_makes_the_anchor_exact_and_can_be_turned_off(native, real_mesh):
+    # The anchor's automatic labels flatten only above the first run's
+    # collapse bound: the first run ends far from a polycube, stage 9 makes
+    # it exact with a few percent of the area collapsed.
+    vertices, indices, sizes = real_mesh("anchor")
+    labels = native.auto_labels(vertices, indices, sizes)
+    first = native.deform(vertices, indices, sizes, labels, last_resort=False)["report"]
+    assert not first["converged"] and not first["last_resort"]
+    assert first["folded_edges"] <= first["input_folded_edges"]
+    rescued = native.deform(vertices, indices, sizes, labels)["report"]
+    assert rescued["converged"] and rescued["last_resort"]
+    assert rescued["normal_deviation_max_deg"] < 0.5 and rescued["flipped_faces"] == 0
+    assert rescued["collapsed_area"] < 0.05
+
+
 def test_callback_exception_propagates(native, sphere):
     vertices, indices, sizes = sphere
 
