@@ -18,12 +18,40 @@
 #include "mesh/unit_box.h"
 
 namespace polycube {
+namespace {
+
+// Rings of faces that reach `reach` times the square root of the surface
+// area, at the mean length of the polygons' edges; at least `rings`, at most
+// kMostRings (a ring costs one pass over the faces' neighbours, and 1M
+// triangles would ask for 55 of them per iteration).
+constexpr double kMostRings = 48;
+int smoothing_rings(const PolygonMesh& mesh, const Triangulation& triangulation, double reach, int rings) {
+  double area = 0.0, length = 0.0;
+  const Triangles& triangles = triangulation.triangles;
+  for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
+    const Eigen::Vector3d a = mesh.vertices.row(triangles(t, 0)), b = mesh.vertices.row(triangles(t, 1)),
+                          c = mesh.vertices.row(triangles(t, 2));
+    area += 0.5 * (b - a).cross(c - a).norm();
+  }
+  const PolygonFaces& faces = mesh.faces;
+  for (int f = 0; f < faces.count(); ++f)
+    for (int k = 0, size = faces.size(f), first = faces.offsets[f]; k < size; ++k)
+      length += (mesh.vertices.row(faces.indices[first + k]) - mesh.vertices.row(faces.indices[first + (k + 1) % size]))
+                    .norm();
+  length /= static_cast<double>(faces.indices.size());
+  if (!(length > 0.0) || !(area > 0.0)) return rings;
+  return std::max(rings, static_cast<int>(std::lround(std::min(reach * std::sqrt(area) / length, kMostRings))));
+}
+
+}  // namespace
 
 AutoLabelOptions AutoLabelOptions::with_detail(double detail) {
   if (!(detail >= 0.0 && detail <= 1.0)) throw Error("detail must be a number from 0 to 1");
   AutoLabelOptions options;
   options.compactness = 0.3 * std::pow(10.0, 1.0 - 2.0 * detail);
-  options.straighten_rings = std::max(1, static_cast<int>(std::lround(3.0 * std::pow(4.0, 1.0 - 2.0 * detail))));
+  const double smoothing = std::pow(4.0, 1.0 - 2.0 * detail);
+  options.straighten_rings = std::max(1, static_cast<int>(std::lround(3.0 * smoothing)));
+  options.straighten_reach *= smoothing;
   // Merging away small charts makes the coarse end of the knob what a user
   // asks for there (Suzanne at 0: 12 charts, a head and its muzzle), but it
   // loses limbs on organic models (the elephant's legs) and collapses more
@@ -46,7 +74,8 @@ std::vector<int> auto_labels(const PolygonMesh& input, const AutoLabelOptions& o
   const int vertex_count = static_cast<int>(mesh.vertices.rows());
   const MeshAdjacency adjacency = mesh_adjacency(mesh.faces, vertex_count);
   const Triangulation triangulation = triangulate(mesh.vertices, mesh.faces);
-  StraightenOptions so{options.straighten_iterations, options.straighten_rings};
+  const StraightenOptions so{options.straighten_iterations,
+                             smoothing_rings(mesh, triangulation, options.straighten_reach, options.straighten_rings)};
   PolygonMesh straight{straighten(mesh.vertices, triangulation.triangles, so), mesh.faces};
   const LabelEnergy energy = label_energy(straight, mesh.vertices, adjacency, options.compactness);
   std::vector<int> labels(mesh.faces.count());

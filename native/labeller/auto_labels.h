@@ -38,7 +38,7 @@ struct AutoLabelOptions {
   // few large charts (a polycube a modeller would sketch), 1 many small ones
   // that follow every feature; 0.5 is the default below. It sets the
   // compactness (3 at 0, 0.3 at 0.5, 0.03 at 1), the straightening's
-  // smoothing rings (12, 3, 1) and, below 0.5, the share of the area under
+  // smoothing rings and reach (x4, x1, x1/4) and, below 0.5, the share of the area under
   // which charts are merged away (1% at 0, 0.5% at 0.25, none from 0.5).
   // Throws Error outside 0..1.
   static AutoLabelOptions with_detail(double detail);
@@ -49,7 +49,14 @@ struct AutoLabelOptions {
   bool repair = true;              // steps 3 and 4
   int repair_moves = 200;          // at most this many repair moves (each fixes at least one violation)
   int straighten_iterations = 20;  // step 0; 0 reads the input's normals
+  // Step 0's smoothing (straighten.h) reaches this share of the square root
+  // of the surface area, in rings of faces of the mesh's mean edge length,
+  // and never fewer than `straighten_rings` rings: the same shape, finer
+  // meshed, is smoothed over the same surface and gets the same charts
+  // (Suzanne with two levels of subdivision: 36 charts at 3 rings, 18 at 8,
+  // as Suzanne's 12 at 3). Meshes coarser than 3 rings per reach keep 3.
   int straighten_rings = 3;
+  double straighten_reach = 0.082;
   // Step 6: charts under this share of the area (and charts of fewer than
   // three faces) merge into a neighbour where a short repair keeps the
   // polycube conditions (repair_charts.h, simplify_charts); 0: only those

@@ -4,6 +4,7 @@
 
 #include <Eigen/Dense>
 
+#include "deform/quality.h"
 #include "mesh/mesh_adjacency.h"
 #include "mesh/triangulate.h"
 #include "mesh/union_find.h"
@@ -79,7 +80,13 @@ UvFigures uv_figures(const PolygonMesh& mesh, const CornerUvs& uvs) {
 
   double weight = 0.0;
   for (Eigen::Index t = 0; t < count; ++t) {
-    const bool no_uv_area = std::abs(uv_area[t]) <= 1e-12 * total_uv || !std::isfinite(ratio[t]);
+    // Collapsed as the polycube's triangles are (docs/design.md section 4):
+    // a UV area below 1e-3 of the triangle's share of the input's, scaled.
+    // A polycube triangle collapsed to a sliver has a sliver of UV area, of
+    // either sign, and a singular value ratio in the thousands: neither says
+    // anything about the map.
+    const bool no_uv_area =
+        std::abs(uv_area[t]) <= kCollapsedAreaRatio * total_uv * area[t] / total_area || !std::isfinite(ratio[t]);
     if (no_uv_area) {
       out.collapsed_area += area[t];
       continue;

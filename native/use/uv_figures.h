@@ -11,7 +11,8 @@ struct UvFigures {
   // Area-weighted means over the triangles whose UV image has area:
   double angle_distortion = 0.0;  // sigma_max / sigma_min of each triangle's map (1: conformal)
   double area_distortion = 0.0;   // max(r, 1/r), r = its share of the UV area over its share of the mesh area
-  double collapsed_area = 0.0;    // share of the mesh area whose UV image has no area (left out above)
+  double collapsed_area = 0.0;    // share of the mesh area whose UV image is collapsed, as the polycube's
+                                  // triangles are (below 1e-3 of their scaled input area; left out above)
   int flipped = 0;                // triangles whose UV image is turned over against the island's majority
   int islands = 0;                // faces joined across edges whose two ends keep their UVs
   double seam_length = 0.0;       // mesh length of the edges between two faces whose UVs part there

@@ -338,6 +338,26 @@ def test_suzanne_eyes_are_one_chart_each_and_detail_zero_is_a_head():
     assert figures["flipped_faces"] == 0 and figures["normal_deviation_max_deg"] < 0.5, figures
 
 
+def test_suzanne_with_subdivision_level_2_is_as_simple_as_suzanne():
+    # The same shape meshed 16 times finer: the straightening smooths over
+    # the same share of the surface, so the charts stay those of a head
+    # (docs/design.md section 3.4). At a fixed number of rings it had 36.
+    bpy.ops.object.select_all(action='DESELECT')
+    bpy.ops.mesh.primitive_monkey_add()
+    suzanne = bpy.context.active_object
+    suzanne.modifiers.new("Subdivision", 'SUBSURF').levels = 2
+    bpy.ops.object.modifier_apply(modifier="Subdivision")
+    assert len(suzanne.data.polygons) == 7872
+    assert _auto_label(suzanne) == {'FINISHED'}
+    labels = _int_attribute(suzanne, "polycube_label")
+    validation = _validation(suzanne, labels)
+    assert validation["valid"] and validation["charts"] <= 20, validation
+    assert deform(suzanne, label_source='STORED') == {'FINISHED'}
+    figures = key_figures(suzanne, suzanne.data.shape_keys.key_blocks[-1].name, labels)
+    assert figures["flipped_faces"] == 0 and figures["normal_deviation_max_deg"] < 0.5, figures
+    assert figures["collapsed_area"] < 0.02, figures
+
+
 def test_operators_are_registered_undoable():
     for name in ("polycube_auto_label", "polycube_validate_labels", "polycube_label_colours",
                  "polycube_select_unconverged"):
