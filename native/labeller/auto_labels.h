@@ -23,6 +23,9 @@
 //    one label: one flat chart each (labels/open_caps.h).
 // 6. Merge away charts of one or two faces the repair could not, and at low
 //    detail small charts (simplify_below), each with a short repair.
+// 7. A chart whose faces, together, face away from its axis (a reversed
+//    chart, labels/realisability.h) gives them their own nearest axes, and
+//    a repair follows; kept when the labeling is then less invalid.
 // Deterministic: the same mesh and options give the same labels.
 #pragma once
 

@@ -469,3 +469,20 @@ TEST(LastResort, TheAnchorBecomesAnExactPolycube) {
   EXPECT_GT(kept_above, options.max_collapsed_share);
   EXPECT_LT(r.figures.collapsed_area, 0.05);
 }
+
+// Stage 9 raises only the bound on collapse: a run none of whose
+// flattenings that bound refused (here: every face of a sphere asked to face
+// +Z, nothing ever flattens) is not run a second time for nothing.
+TEST(LastResort, NotRunWhenNoFlatteningWasRefusedForCollapse) {
+  const PolygonMesh sphere = test_meshes::uv_sphere(16, 8);
+  const std::vector<int> up(sphere.faces.count(), 4);
+  DeformOptions options;
+  options.iterations = 20;
+  const DeformResult r = deform(sphere, up, options);
+  EXPECT_FALSE(r.converged);
+  EXPECT_FALSE(r.last_resort);
+  for (const DeformResult::FlattenAttempt& a : r.flatten_attempts)
+    EXPECT_FALSE(!a.kept && a.collapsed_area > options.max_collapsed_share && a.collapsed_area <= 0.5);
+  // One run's iterations, fitted or continuous, and no more.
+  EXPECT_LE(r.stages.fit.count + r.stages.continuous.count, options.iterations);
+}
