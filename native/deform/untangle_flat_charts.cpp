@@ -6,7 +6,9 @@
 #include <cmath>
 #include <limits>
 
+#include "deform/barrier_energy.h"
 #include "linear_algebra/minimize_lbfgs.h"
+#include "linear_algebra/minimize_newton.h"
 #include "linear_algebra/parallel.h"
 #include "mesh/union_find.h"
 
@@ -24,6 +26,16 @@ constexpr double kFirstEps = 0.1;
 // with a larger floor: we need positive area, not the exact minimiser).
 constexpr double kMinEpsDecrease = 0.3;
 constexpr int kIterationsPerRound = 300;
+// Newton's iterations per round: from the last round's minimum it needs a
+// few; the cap only bounds a round that creeps.
+constexpr int kNewtonIterations = 50;
+// A Newton round stops once an iteration lowers the energy by less than this
+// share: each round's minimum is only the start of the next, narrower one,
+// and the last iterations before this creep (a tenth of a percent each) on
+// triangles the barrier still holds inverted.
+constexpr double kNewtonSettled = 1e-3;
+// From this many triangles on, the rounds are Newton's (automatic, header).
+constexpr long kNewtonFrom = 100'000;
 // Room: a determinant (area over scaled input area) above this. Far below
 // the collapsed threshold (quality.h), far above rounding: triangles that
 // the charts hold on a line through a chain of shared unknowns come out
@@ -65,7 +77,9 @@ bool on_a_line(const Triangle& t) {
   return false;
 }
 
-double determinant(const Triangle& t, const Eigen::VectorXd& y, Eigen::Matrix2d* jacobian = nullptr) {
+// Always inlined: the minimisations call it for every triangle, every gradient.
+[[gnu::always_inline]] inline double determinant(const Triangle& t, const Eigen::VectorXd& y,
+                                                Eigen::Matrix2d* jacobian = nullptr) {
   Eigen::Matrix2d edges;
   for (int e = 0; e < 2; ++e)
     for (int c = 0; c < 2; ++c) edges(c, e) = y[t.unknown[e + 1][c]] - y[t.unknown[0][c]];
@@ -74,11 +88,42 @@ double determinant(const Triangle& t, const Eigen::VectorXd& y, Eigen::Matrix2d*
   return j.determinant();
 }
 
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
+
+// One triangle's energy (header, barrier_energy.h) at `at` with barrier
+// width eps and, when asked, its gradient by its two edges (columns; corner 0
+// gets minus their sum).
+double triangle_energy(const Triangle& t, const Eigen::VectorXd& at, double eps, Eigen::Matrix2d* by_edges = nullptr) {
+  Eigen::Matrix2d j, by_j;
+  determinant(t, at, &j);
+  const double value = barrier_energy(j, t.weight, eps, kTheta, by_edges ? &by_j : nullptr);
+  if (by_edges) *by_edges = by_j * t.inverse_reference.transpose();
+  return value;
+}
+
+// Its Hessian, positive semi-definite, in its six corner coordinates (corner
+// j's in-plane coordinate c at 2 j + c): barrier_hessian() in J, carried
+// through J's linear map in the corners, which keeps it so.
+Matrix6d triangle_hessian(const Triangle& t, const Eigen::VectorXd& at, double eps) {
+  Eigen::Matrix2d j;
+  determinant(t, at, &j);
+  // J(c, k) = sum over corners of corner[c] * spread(corner, k).
+  Eigen::Matrix<double, 3, 2> spread;
+  spread.row(1) = t.inverse_reference.row(0);
+  spread.row(2) = t.inverse_reference.row(1);
+  spread.row(0) = -spread.row(1) - spread.row(2);
+  Eigen::Matrix<double, 4, 6> map = Eigen::Matrix<double, 4, 6>::Zero();
+  for (int corner = 0; corner < 3; ++corner)
+    for (int c = 0; c < 2; ++c)
+      for (int k = 0; k < 2; ++k) map(c + 2 * k, 2 * corner + c) = spread(corner, k);
+  return map.transpose() * barrier_hessian(j, t.weight, eps, kTheta) * map;
+}
+
 }  // namespace
 
 UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat, const Triangles& triangles,
                                      const std::vector<int>& triangle_labels, int max_rounds, double local_share,
-                                     const CollapseBound& bound) {
+                                     const CollapseBound& bound, UntangleMinimiser minimiser) {
   const int n = static_cast<int>(input.rows());
   const Eigen::Index count = triangles.rows();
   UntangledCharts result;
@@ -217,29 +262,20 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
   double eps = kFirstEps;
   // Per thread: its triangles' share of the gradient, summed afterwards.
   std::vector<Eigen::VectorXd> partial(std::max(1, parallel_threads(static_cast<long>(count))));
-  auto energy_of = [&](const std::vector<Triangle>& list, const Eigen::VectorXd& at, Eigen::VectorXd& gradient) {
+  auto energy_of = [&](const std::vector<Triangle>& list, const Eigen::VectorXd& at, Eigen::VectorXd* gradient,
+                       std::vector<double>* hessians) {
     const long size = static_cast<long>(list.size());
     const int threads = parallel_threads(size);
     double total = 0.0;
 #pragma omp parallel for num_threads(threads) reduction(+ : total) schedule(static)
     for (int chunk = 0; chunk < threads; ++chunk) {
       Eigen::VectorXd& part = partial[chunk];
-      part.setZero(at.size());
+      if (gradient) part.setZero(at.size());
+      Eigen::Matrix2d by_edges;
       for (long i = size * chunk / threads; i < size * (chunk + 1) / threads; ++i) {
         const Triangle& t = list[i];
-        Eigen::Matrix2d j;
-        const double d = determinant(t, at, &j);
-        const double root = std::sqrt(eps * eps + d * d);
-        const double chi = 0.5 * (d + root), chi_d = 0.5 * (1.0 + d / root);
-        const double frobenius = j.squaredNorm();
-        total += t.weight * ((1.0 - kTheta) * frobenius + kTheta * (d * d + 1.0)) / chi;
-        // d/dJ, then through J = edges * inverse_reference to the corners.
-        Eigen::Matrix2d cofactor;
-        cofactor << j(1, 1), -j(1, 0), -j(0, 1), j(0, 0);
-        const double by_d = ((1.0 - kTheta) * -frobenius / (chi * chi) * chi_d +
-                             kTheta * (2.0 * d / chi - (d * d + 1.0) / (chi * chi) * chi_d));
-        const Eigen::Matrix2d by_j = t.weight * ((1.0 - kTheta) * 2.0 / chi * j + by_d * cofactor);
-        const Eigen::Matrix2d by_edges = by_j * t.inverse_reference.transpose();
+        total += triangle_energy(t, at, eps, gradient ? &by_edges : nullptr);
+        if (!gradient) continue;
         for (int c = 0; c < 2; ++c) {
           part[t.unknown[1][c]] += by_edges(c, 0);
           part[t.unknown[2][c]] += by_edges(c, 1);
@@ -247,11 +283,52 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
         }
       }
     }
-    gradient = partial[0];
-    for (int chunk = 1; chunk < threads; ++chunk) gradient += partial[chunk];
+    if (hessians) {
+      hessians->resize(36 * list.size());
+#pragma omp parallel for num_threads(threads) schedule(static)
+      for (long i = 0; i < size; ++i) {
+        const Matrix6d hessian = triangle_hessian(list[i], at, eps);
+        std::copy(hessian.data(), hessian.data() + 36, hessians->data() + 36 * i);
+      }
+    }
+    if (gradient) {
+      *gradient = partial[0];
+      for (int chunk = 1; chunk < threads; ++chunk) *gradient += partial[chunk];
+    }
     return total;
   };
-  auto energy = [&](const Eigen::VectorXd& at, Eigen::VectorXd& gradient) { return energy_of(active, at, gradient); };
+  const bool newton_rounds =
+      minimiser == UntangleMinimiser::newton ||
+      (minimiser == UntangleMinimiser::automatic && static_cast<long>(active.size()) >= kNewtonFrom);
+  // Minimises the energy of `list` over the first `free_count` entries of
+  // `at` (the others held); returns the energy reached.
+  NewtonMinimizer global_newton;
+  auto minimize_over = [&](const std::vector<Triangle>& list, Eigen::VectorXd& at, int free_count,
+                           NewtonMinimizer& newton) {
+    if (!newton_rounds) {
+      const Objective objective = [&](const Eigen::VectorXd& p, Eigen::VectorXd& gradient) {
+        const double value = energy_of(list, p, &gradient, nullptr);
+        gradient.tail(gradient.size() - free_count).setZero();  // held
+        return value;
+      };
+      const LbfgsResult run = minimize_lbfgs(objective, at, kIterationsPerRound, 1e-9, 1e-8);
+      result.iterations += run.iterations;
+      return run.value;
+    }
+    std::vector<int> corners(6 * list.size());
+    for (size_t i = 0; i < list.size(); ++i)
+      for (int corner = 0; corner < 3; ++corner)
+        for (int c = 0; c < 2; ++c) corners[6 * i + 2 * corner + c] = list[i].unknown[corner][c];
+    const ElementObjective objective = [&](const Eigen::VectorXd& p, Eigen::VectorXd* gradient,
+                                           std::vector<double>* hessians) {
+      return energy_of(list, p, gradient, hessians);
+    };
+    const NewtonResult run =
+        newton.minimize(objective, corners, 6, free_count, at, kNewtonIterations, 1e-9, kNewtonSettled);
+    result.iterations += run.iterations;
+    result.factorizations += run.factorizations;
+    return run.value;
+  };
 
   // A local round: only the unknowns within a few rings of the triangles
   // left without room move, the rest (and every plane shared by more than
@@ -296,28 +373,22 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
     }
     Eigen::VectorXd z(order.size());
     for (size_t i = 0; i < order.size(); ++i) z[i] = y[order[i]];
-    const Objective local_energy = [&](const Eigen::VectorXd& at, Eigen::VectorXd& gradient) {
-      const double value = energy_of(local, at, gradient);
-      gradient.tail(gradient.size() - free_count).setZero();  // held
-      return value;
-    };
-    const LbfgsResult run = minimize_lbfgs(local_energy, z, kIterationsPerRound, 1e-9, 1e-8);
+    NewtonMinimizer newton;
+    minimize_over(local, z, free_count, newton);
     for (int i = 0; i < free_count; ++i) y[order[i]] = z[i];
-    return run;
   };
 
   double previous = std::numeric_limits<double>::infinity();
   size_t last_no_room = 0;
   for (result.rounds = 1; result.rounds <= max_rounds; ++result.rounds) {
-    LbfgsResult run;
+    double reached = 0.0;
     const bool local = !seeds.empty();
     if (!local) {
-      run = minimize_lbfgs(energy, y, kIterationsPerRound, 1e-9, 1e-8);
+      reached = minimize_over(active, y, static_cast<int>(y.size()), global_newton);
     } else {
       ++result.local_rounds;
-      run = minimize_locally();
-      Eigen::VectorXd unused;
-      run.value = energy(y, unused);
+      minimize_locally();
+      reached = energy_of(active, y, nullptr, nullptr);
     }
     double smallest = std::numeric_limits<double>::infinity();
     std::vector<int> no_room;
@@ -328,7 +399,7 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
     }
     for (int u = 0; u < unknowns; ++u) x[u] = y[slot[u]];
     const double decrease =
-        std::isfinite(previous) ? std::max(1.0 - run.value / previous, kMinEpsDecrease) : kMinEpsDecrease;
+        std::isfinite(previous) ? std::max(1.0 - reached / previous, kMinEpsDecrease) : kMinEpsDecrease;
     const double previous_value = previous;
     const size_t previous_no_room = last_no_room;
     last_no_room = no_room.size();
@@ -337,12 +408,12 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
       for (const int a : no_room)
         for (const auto& corner : all[source[a]].unknown)
           for (const int u : corner) seeds.push_back(u);
-    previous = run.value;
+    previous = reached;
     result.untangled = no_room.empty();
     if (no_room.empty()) {
       // The last round is global: the map away from the triangles that
       // were without room is polished as before.
-      if (!local && (eps < 1e-4 || 1.0 - run.value / previous_value < kSettled)) break;
+      if (!local && (eps < 1e-4 || 1.0 - reached / previous_value < kSettled)) break;
     } else if (result.rounds > 1 && no_room.size() > kStalled * previous_no_room) {
       // Stalled without area: no room in the charts.
       // Its corners share the coordinate in which it is thinnest (or that

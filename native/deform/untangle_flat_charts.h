@@ -42,6 +42,8 @@ struct UntangledCharts {
   int rounds = 0;           // minimisations done (one per eps)
   int local_rounds = 0;     // of them, over the neighbourhoods of triangles without room
   int put_on_a_line = 0;    // triangles left collapsed: no room in their charts
+  int iterations = 0;       // the minimiser's, over every round
+  int factorizations = 0;   // Newton's sparse factorisations, over every round
   bool untangled = false;   // every other triangle has positive area in its chart
   bool refused = false;     // stopped once past the bound (below): `positions` unfinished
 };
@@ -57,6 +59,19 @@ struct CollapseBound {
   int triangles = std::numeric_limits<int>::max();        // triangles (of positive input area) on a line
 };
 
+// How each round minimises: projected Newton (linear_algebra/minimize_newton.h)
+// or L-BFGS (linear_algebra/minimize_lbfgs.h); automatic: Newton from 100,000
+// triangles on, L-BFGS below. Newton's rounds reach a lower energy in a few
+// factorisations where L-BFGS stops at its 300 gradients, which at scale
+// costs less: the stage 62 -> 41 s on B0 refined 64 times, 84 -> 49 s on
+// fandisk refined 16 times, edge error lower (peak memory 1.7 -> 3.2 GiB on
+// B0: the factor). Below, a factorisation costs dozens of L-BFGS iterations,
+// the untangling ends no faster (lion 4 -> 8 s), and the rounds, settled at
+// each eps, leave more triangles without room to put on a line (fandisk 0 ->
+// 21 collapsed, armadillo 182 -> 1348); L-BFGS's results there are kept bit
+// for bit.
+enum class UntangleMinimiser { automatic, newton, lbfgs };
+
 constexpr int kUntangleRounds = 30;
 constexpr double kUntangleLocalShare = 0.002;
 
@@ -67,6 +82,7 @@ constexpr double kUntangleLocalShare = 0.002;
 // a line pass it.
 UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat, const Triangles& triangles,
                                      const std::vector<int>& triangle_labels, int max_rounds = kUntangleRounds,
-                                     double local_share = kUntangleLocalShare, const CollapseBound& bound = {});
+                                     double local_share = kUntangleLocalShare, const CollapseBound& bound = {},
+                                     UntangleMinimiser minimiser = UntangleMinimiser::automatic);
 
 }  // namespace polycube

@@ -1,0 +1,175 @@
+#include "linear_algebra/minimize_newton.h"
+
+#include <Eigen/SparseCore>
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "linear_algebra/sparse_cholesky.h"
+#include "mesh/mesh.h"
+
+namespace polycube {
+
+namespace {
+
+// The first diagonal shift, relative to the mean diagonal: the energies
+// minimised here are invariant under translations (their Hessians are
+// singular); the gradient has no part along them, so a shift this small
+// leaves the step as it was. Multiplied by kShiftGrowth while a
+// factorisation fails or its step does not descend.
+constexpr double kFirstShift = 1e-9;
+constexpr double kShiftGrowth = 100.0;
+constexpr int kShiftTries = 6;
+constexpr double kArmijo = 1e-4;
+constexpr int kHalvings = 40;
+
+}  // namespace
+
+// The lower triangle's pattern over the free unknowns, and where each
+// element's (row >= column) entries land in its values.
+struct NewtonMinimizer::System {
+  std::vector<int> element_unknowns;
+  int element_size = 0, free = 0;
+  Eigen::SparseMatrix<double> matrix;  // lower triangle
+  std::vector<int> position;           // per element, K * K: index into matrix's values, or -1
+  std::vector<int> diagonal;           // per free unknown: index of its diagonal entry
+  SparseCholesky factor;
+  bool analyzed = false;
+
+  System(const std::vector<int>& unknowns, int k, int free_count)
+      : element_unknowns(unknowns), element_size(k), free(free_count) {
+    const size_t elements = unknowns.size() / k;
+    // Rows per column, counted then filled (a triplet list would hold
+    // 36 entries per triangle at once).
+    std::vector<int> start(free + 1, 0);
+    auto for_each_pair = [&](auto&& visit) {
+      for (size_t e = 0; e < elements; ++e) {
+        const int* u = &unknowns[e * k];
+        for (int q = 0; q < k; ++q)
+          for (int p = 0; p < k; ++p)
+            if (u[p] < free && u[q] < free && u[p] >= u[q]) visit(e, p, q, u[p], u[q]);
+      }
+    };
+    for (int i = 0; i < free; ++i) ++start[i + 1];  // the diagonal, always
+    for_each_pair([&](size_t, int, int, int, int column) { ++start[column + 1]; });
+    std::partial_sum(start.begin(), start.end(), start.begin());
+    std::vector<int> rows(start.back()), fill(start.begin(), start.end() - 1);
+    for (int i = 0; i < free; ++i) rows[fill[i]++] = i;
+    for_each_pair([&](size_t, int, int, int row, int column) { rows[fill[column]++] = row; });
+    std::vector<int> outer(free + 1, 0), inner;
+    inner.reserve(rows.size());
+    for (int c = 0; c < free; ++c) {
+      auto begin = rows.begin() + start[c], end = rows.begin() + start[c + 1];
+      std::sort(begin, end);
+      end = std::unique(begin, end);
+      inner.insert(inner.end(), begin, end);
+      outer[c + 1] = static_cast<int>(inner.size());
+    }
+    rows = {};
+    std::vector<double> zeros(inner.size(), 0.0);
+    matrix = Eigen::Map<const Eigen::SparseMatrix<double>>(free, free, static_cast<Eigen::Index>(inner.size()),
+                                                           outer.data(), inner.data(), zeros.data());
+    auto index_of = [&](int row, int column) {
+      const int* first = inner.data() + outer[column];
+      const int* last = inner.data() + outer[column + 1];
+      return static_cast<int>(std::lower_bound(first, last, row) - inner.data());
+    };
+    position.assign(unknowns.size() * k, -1);
+    for_each_pair([&](size_t e, int p, int q, int row, int column) {
+      position[e * k * k + q * k + p] = index_of(row, column);
+    });
+    diagonal.resize(free);
+    for (int i = 0; i < free; ++i) diagonal[i] = index_of(i, i);
+  }
+
+  bool same(const std::vector<int>& unknowns, int k, int free_count) const {
+    return k == element_size && free_count == free && unknowns == element_unknowns;
+  }
+
+  // The assembled Hessian's values, without a shift.
+  void assemble(const std::vector<double>& hessians) {
+    double* values = matrix.valuePtr();
+    std::fill(values, values + matrix.nonZeros(), 0.0);
+    for (size_t i = 0; i < position.size(); ++i)
+      if (position[i] >= 0) values[position[i]] += hessians[i];
+  }
+};
+
+NewtonMinimizer::NewtonMinimizer() = default;
+NewtonMinimizer::~NewtonMinimizer() = default;
+
+NewtonResult NewtonMinimizer::minimize(const ElementObjective& objective, const std::vector<int>& element_unknowns,
+                                       int element_size, int free, Eigen::VectorXd& x, int max_iterations,
+                                       double gradient_tolerance, double relative_tolerance) {
+  NewtonResult result;
+  if (!system_ || !system_->same(element_unknowns, element_size, free))
+    system_ = std::make_unique<System>(element_unknowns, element_size, free);
+  System& s = *system_;
+  Eigen::VectorXd gradient(x.size());
+  std::vector<double> hessians;
+  double value = objective(x, &gradient, &hessians);
+  for (; result.iterations < max_iterations; ++result.iterations) {
+    if (!std::isfinite(value) || free == 0 || gradient.head(free).lpNorm<Eigen::Infinity>() < gradient_tolerance) {
+      result.converged = std::isfinite(value);
+      break;
+    }
+    s.assemble(hessians);
+    double* values = s.matrix.valuePtr();
+    double mean_diagonal = 0.0;
+    for (const int d : s.diagonal) mean_diagonal += std::abs(values[d]);
+    mean_diagonal = std::max(mean_diagonal / free, 1e-300);
+    const Eigen::VectorXd minus_gradient = -gradient.head(free);
+    Eigen::VectorXd step;
+    double slope = 0.0, shift = kFirstShift * mean_diagonal, applied = 0.0;
+    bool found = false;
+    for (int attempt = 0; attempt < kShiftTries && !found; ++attempt, shift *= kShiftGrowth) {
+      for (const int d : s.diagonal) values[d] += shift - applied;
+      applied = shift;
+      try {
+        if (!s.analyzed) s.factor.analyze(s.matrix, true), s.analyzed = true;
+        s.factor.factorize(s.matrix);
+        ++result.factorizations;
+      } catch (const Error&) {
+        s.analyzed = false;  // the factorisation may have changed backend: analyse again
+        continue;
+      }
+      step = s.factor.solve(minus_gradient);
+      slope = -minus_gradient.dot(step);
+      found = step.allFinite() && slope < 0.0;
+    }
+    if (!found) {  // no usable curvature: the gradient's direction
+      step = minus_gradient / mean_diagonal;
+      slope = -minus_gradient.squaredNorm() / mean_diagonal;
+    }
+    // Newton's model predicts a decrease of -slope / 2 for the full step.
+    const bool last = -0.5 * slope <= relative_tolerance * std::abs(value);
+    Eigen::VectorXd next = x;
+    double next_value = value, t = 1.0;
+    bool accepted = false;
+    for (int halving = 0; halving < kHalvings; ++halving, t *= 0.5) {
+      next.head(free) = x.head(free) + t * step;
+      next_value = objective(next, nullptr, nullptr);
+      if (std::isfinite(next_value) && next_value <= value + kArmijo * t * slope) {
+        accepted = true;
+        break;
+      }
+    }
+    if (!accepted) {
+      result.converged = true;  // no decrease left at this precision
+      break;
+    }
+    const double decrease = value - next_value;
+    x.swap(next);
+    value = next_value;
+    if (last || decrease <= relative_tolerance * std::abs(value)) {
+      result.converged = true;
+      ++result.iterations;
+      break;
+    }
+    value = objective(x, &gradient, &hessians);
+  }
+  result.value = value;
+  return result;
+}
+
+}  // namespace polycube

@@ -1,0 +1,208 @@
+// The projected-Newton minimiser (linear_algebra/minimize_newton.h) and the
+// untangling's barrier energy it minimises (deform/barrier_energy.h): the
+// energy's derivatives against finite differences, its projected Hessian
+// positive semi-definite, and Newton reaching what L-BFGS reaches in far
+// fewer iterations.
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <fstream>
+#include <set>
+
+#include "deform/barrier_energy.h"
+#include "deform/deform.h"
+#include "deform/flatten_charts.h"
+#include "deform/quality.h"
+#include "io/read_mesh.h"
+#include "labels/nearest_labels.h"
+#include "linear_algebra/cotangent_weights.h"
+#include "linear_algebra/laplacian.h"
+#include "deform/untangle_flat_charts.h"
+#include "linear_algebra/minimize_lbfgs.h"
+#include "linear_algebra/minimize_newton.h"
+#include "mesh/triangulate.h"
+#include "test_meshes.h"
+
+namespace polycube {
+namespace {
+
+constexpr double kTheta = 0.5;
+
+// Jacobians of every kind the untangling meets: turned over, collapsed,
+// sheared, near the identity.
+std::vector<Eigen::Matrix2d> jacobians() {
+  std::vector<Eigen::Matrix2d> out;
+  Eigen::Matrix2d j;
+  out.push_back(Eigen::Matrix2d::Identity());
+  out.push_back(1.5 * Eigen::Matrix2d::Identity());  // both convex at eps = 0.05
+  j << 1.0, 0.1, -0.2, 0.9;
+  out.push_back(j);
+  j << -0.7, 0.3, 0.2, 0.8;  // turned over
+  out.push_back(j);
+  j << 1.0, 2.0, 0.5, 1.0;  // collapsed
+  out.push_back(j);
+  j << 0.05, 1.5, -0.01, 0.3;  // thin
+  out.push_back(j);
+  for (int i = 0; i < 8; ++i) out.push_back(Eigen::Matrix2d::Random());
+  return out;
+}
+
+TEST(BarrierEnergy, DerivativesMatchFiniteDifferences) {
+  for (const double eps : {0.1, 0.01}) {
+    for (const Eigen::Matrix2d& j : jacobians()) {
+      Eigen::Matrix2d gradient;
+      const Eigen::Matrix4d hessian = barrier_hessian(j, 0.7, eps, kTheta, false);
+      barrier_energy(j, 0.7, eps, kTheta, &gradient);
+      const double h = 1e-6;
+      for (int k = 0; k < 4; ++k) {
+        Eigen::Matrix2d plus = j, minus = j;
+        plus.data()[k] += h;
+        minus.data()[k] -= h;
+        const double by_k = (barrier_energy(plus, 0.7, eps, kTheta) - barrier_energy(minus, 0.7, eps, kTheta)) / (2 * h);
+        EXPECT_NEAR(gradient.data()[k], by_k, 1e-5 * (1.0 + std::abs(by_k))) << "det " << j.determinant() << " eps " << eps;
+        Eigen::Matrix2d g_plus, g_minus;
+        barrier_energy(plus, 0.7, eps, kTheta, &g_plus);
+        barrier_energy(minus, 0.7, eps, kTheta, &g_minus);
+        const Eigen::Vector4d column = Eigen::Map<const Eigen::Vector4d>(Eigen::Matrix2d(g_plus - g_minus).data()) / (2 * h);
+        EXPECT_LT((hessian.col(k) - column).norm(), 1e-5 * (1.0 + column.norm()))
+            << "det " << j.determinant() << " eps " << eps;
+      }
+    }
+  }
+}
+
+TEST(BarrierEnergy, ProjectedHessianIsPositiveSemiDefiniteAndExactWhereConvex) {
+  int convex = 0, projected = 0;
+  for (const Eigen::Matrix2d& j : jacobians()) {
+    const Eigen::Matrix4d exact = barrier_hessian(j, 1.0, 0.05, kTheta, false);
+    const Eigen::Matrix4d kept = barrier_hessian(j, 1.0, 0.05, kTheta, true);
+    const Eigen::Vector4d before = Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d>(exact).eigenvalues();
+    const Eigen::Vector4d after = Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d>(kept).eigenvalues();
+    EXPECT_GE(after.minCoeff(), -1e-9 * after.cwiseAbs().maxCoeff());
+    if (before.minCoeff() > 0.0) {
+      ++convex;
+      EXPECT_LT((kept - exact).norm(), 1e-12 * exact.norm());
+    } else {
+      ++projected;
+      // Negative curvature turned positive, its size kept (|eigenvalue|).
+      EXPECT_NEAR(after.cwiseAbs().sum(), before.cwiseAbs().sum(), 1e-9 * before.cwiseAbs().sum());
+    }
+  }
+  EXPECT_GT(convex, 0);
+  EXPECT_GT(projected, 0);
+}
+
+// Rosenbrock's valley as one element of two unknowns, its Hessian projected
+// as the untangling's are: Newton needs a tenth of L-BFGS's iterations.
+TEST(MinimizeNewton, FindsTheRosenbrockMinimumInFewIterations) {
+  const ElementObjective rosenbrock = [](const Eigen::VectorXd& x, Eigen::VectorXd* g, std::vector<double>* h) {
+    const double a = 1.0 - x[0], b = x[1] - x[0] * x[0];
+    if (g) {
+      g->resize(2);
+      (*g)[0] = -2.0 * a - 400.0 * x[0] * b;
+      (*g)[1] = 200.0 * b;
+    }
+    if (h) {
+      Eigen::Matrix2d m;
+      m << 2.0 - 400.0 * b + 800.0 * x[0] * x[0], -400.0 * x[0], -400.0 * x[0], 200.0;
+      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(m);
+      m = eigen.eigenvectors() * eigen.eigenvalues().cwiseAbs().asDiagonal() * eigen.eigenvectors().transpose();
+      h->assign(m.data(), m.data() + 4);
+    }
+    return a * a + 100.0 * b * b;
+  };
+  Eigen::VectorXd x(2);
+  x << -1.2, 1.0;
+  NewtonMinimizer newton;
+  const NewtonResult r = newton.minimize(rosenbrock, {0, 1}, 2, 2, x, 200, 1e-10, 0.0);
+  EXPECT_TRUE(r.converged);
+  EXPECT_NEAR(x[0], 1.0, 1e-6);
+  EXPECT_NEAR(x[1], 1.0, 1e-6);
+  EXPECT_LT(r.iterations, 30);
+  EXPECT_EQ(r.factorizations, r.iterations);
+}
+
+// Held unknowns stay; a shared unknown (two corners of one element on the
+// same entry) sums its blocks: a chain of springs, each element a quadratic
+// (x_i - x_j - 1)^2 in two unknowns, solved exactly by one Newton step.
+TEST(MinimizeNewton, SolvesAQuadraticInOneStepAndHoldsTheRest) {
+  const int n = 50;
+  std::vector<int> elements;
+  for (int i = 0; i + 1 < n; ++i) elements.push_back(i + 1), elements.push_back(i);
+  elements.push_back(3), elements.push_back(3);  // an element on one unknown twice: zero energy
+  const ElementObjective springs = [&](const Eigen::VectorXd& x, Eigen::VectorXd* g, std::vector<double>* h) {
+    double f = 0.0;
+    if (g) g->setZero(x.size());
+    if (h) h->clear();
+    for (size_t e = 0; e < elements.size() / 2; ++e) {
+      const int i = elements[2 * e], j = elements[2 * e + 1];
+      const double r = i == j ? 0.0 : x[i] - x[j] - 1.0;
+      f += r * r;
+      if (g && i != j) (*g)[i] += 2.0 * r, (*g)[j] -= 2.0 * r;
+      if (h) {
+        const double s = i == j ? 0.0 : 2.0;
+        h->insert(h->end(), {s, -s, -s, s});
+      }
+    }
+    return f;
+  };
+  // The held unknowns are the vector's tail: number the chain from its far end.
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+  for (int& u : elements) u = n - 1 - u;
+  x[n - 1] = 5.0;  // the chain's first vertex, held
+  NewtonMinimizer newton;
+  const NewtonResult r = newton.minimize(springs, elements, 2, n - 1, x, 10, 1e-10, 0.0);
+  EXPECT_TRUE(r.converged);
+  EXPECT_LE(r.iterations, 3);
+  EXPECT_EQ(x[n - 1], 5.0);
+  for (int i = 0; i + 1 < n; ++i) EXPECT_NEAR(x[n - 2 - i], 5.0 + (i + 1), 1e-8);
+}
+
+// A real untangling: fandisk's flat charts from its nearest-axis labels (the
+// first flat solve, with turned-over triangles), untangled by each minimiser.
+TEST(UntangleFlatCharts, NewtonAndLbfgsOpenTheSameTriangles) {
+  const std::string path = std::string(POLYCUBE_MESH_DATA) + "/fandisk.off";
+  if (!std::ifstream(path).good()) GTEST_SKIP() << "fandisk.off is missing: run `make data`";
+  const PolygonMesh mesh = read_mesh(path);
+  const Triangulation t = triangulate(mesh.vertices, mesh.faces);
+  std::vector<int> labels;
+  const std::vector<int> nearest = nearest_labels(mesh);
+  for (Eigen::Index i = 0; i < t.triangles.rows(); ++i) labels.push_back(nearest[t.face_of_triangle[i]]);
+  const CotangentWeights weights = cotangent_weights(mesh.vertices, t.triangles).cwiseMax(0.0);
+  Laplacian laplacian(static_cast<int>(mesh.vertices.rows()), t.triangles);
+  const double shift = laplacian.assemble(weights, 1e-8);
+  const QualityMeasure quality(mesh.vertices, t.triangles, labels);
+  const FlatCharts flat = flatten_charts(
+      mesh.vertices, mesh.vertices, t.triangles, labels, weights, laplacian.matrix(), shift, quality,
+      [](const Eigen::MatrixX3d& y) { return y; }, DeformOptions{}.max_collapsed_share);
+  ASSERT_GT(flat.first_positions.rows(), 0);
+  const FaceStates tangled = quality.face_states(flat.first_positions);
+  ASSERT_GT(tangled.flipped_count, 0);
+
+  std::vector<Figures> figures;
+  std::vector<UntangledCharts> runs;
+  for (const UntangleMinimiser m : {UntangleMinimiser::lbfgs, UntangleMinimiser::newton}) {
+    runs.push_back(untangle_flat_charts(mesh.vertices, flat.first_positions, t.triangles, labels, kUntangleRounds,
+                                        kUntangleLocalShare, {}, m));
+    figures.push_back(quality.measure(runs.back().positions));
+  }
+  const UntangledCharts &lbfgs = runs[0], &newton = runs[1];
+  for (const Figures& f : figures) {
+    EXPECT_EQ(f.flipped_faces, 0);
+    EXPECT_LT(f.normal_deviation_max_deg, 1e-6);
+  }
+  EXPECT_TRUE(lbfgs.untangled);
+  EXPECT_TRUE(newton.untangled);
+  EXPECT_EQ(lbfgs.factorizations, 0);
+  EXPECT_GT(newton.factorizations, 0);
+  // A tenth of the iterations, each a factorisation where L-BFGS's is a
+  // gradient, to figures as good.
+  EXPECT_LT(10 * newton.iterations, lbfgs.iterations);
+  EXPECT_LE(figures[1].collapsed_faces, figures[0].collapsed_faces + 2);
+  EXPECT_LT(figures[1].area_error, figures[0].area_error + 0.005);
+  EXPECT_LT(figures[1].edge_error, figures[0].edge_error + 0.005);
+}
+
+}  // namespace
+}  // namespace polycube
