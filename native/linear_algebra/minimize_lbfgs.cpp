@@ -4,6 +4,8 @@
 #include <deque>
 #include <vector>
 
+#include "linear_algebra/armijo_backtracking.h"
+
 namespace polycube {
 
 LbfgsResult minimize_lbfgs(const Objective& objective, Eigen::VectorXd& x, int max_iterations,
@@ -37,19 +39,14 @@ LbfgsResult minimize_lbfgs(const Objective& objective, Eigen::VectorXd& x, int m
       slope = -gradient.squaredNorm();
     }
     // The first step has no curvature yet: keep it short.
-    double t = steps.empty() ? std::min(1.0, 1.0 / gradient.lpNorm<Eigen::Infinity>()) : 1.0;
+    const double first = steps.empty() ? std::min(1.0, 1.0 / gradient.lpNorm<Eigen::Infinity>()) : 1.0;
     Eigen::VectorXd next;
     double next_value = value;
-    bool accepted = false;
-    for (int halving = 0; halving < 40; ++halving, t *= 0.5) {
+    const auto value_at = [&](double t) {
       next = x + t * direction;
-      next_value = objective(next, next_gradient);
-      if (std::isfinite(next_value) && next_value <= value + 1e-4 * t * slope) {
-        accepted = true;
-        break;
-      }
-    }
-    if (!accepted) {
+      return objective(next, next_gradient);
+    };
+    if (armijo_backtracking(value_at, value, slope, first, next_value) == 0.0) {
       result.converged = true;  // no decrease left at this precision
       break;
     }

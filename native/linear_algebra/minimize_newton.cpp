@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "linear_algebra/armijo_backtracking.h"
 #include "linear_algebra/sparse_cholesky.h"
 #include "mesh/mesh.h"
 
@@ -20,8 +21,6 @@ namespace {
 constexpr double kFirstShift = 1e-9;
 constexpr double kShiftGrowth = 100.0;
 constexpr int kShiftTries = 6;
-constexpr double kArmijo = 1e-4;
-constexpr int kHalvings = 40;
 
 }  // namespace
 
@@ -144,17 +143,12 @@ NewtonResult NewtonMinimizer::minimize(const ElementObjective& objective, const 
     // Newton's model predicts a decrease of -slope / 2 for the full step.
     const bool last = -0.5 * slope <= relative_tolerance * std::abs(value);
     Eigen::VectorXd next = x;
-    double next_value = value, t = 1.0;
-    bool accepted = false;
-    for (int halving = 0; halving < kHalvings; ++halving, t *= 0.5) {
+    double next_value = value;
+    const auto value_at = [&](double t) {
       next.head(free) = x.head(free) + t * step;
-      next_value = objective(next, nullptr, nullptr);
-      if (std::isfinite(next_value) && next_value <= value + kArmijo * t * slope) {
-        accepted = true;
-        break;
-      }
-    }
-    if (!accepted) {
+      return objective(next, nullptr, nullptr);
+    };
+    if (armijo_backtracking(value_at, value, slope, 1.0, next_value) == 0.0) {
       result.converged = true;  // no decrease left at this precision
       break;
     }

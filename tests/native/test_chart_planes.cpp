@@ -17,6 +17,7 @@
 #include "linear_algebra/laplacian.h"
 #include "mesh/triangulate.h"
 #include "mesh/union_find.h"
+#include "nearest_flat_start.h"
 #include "test_meshes.h"
 
 namespace {
@@ -181,16 +182,9 @@ TEST(FlattenCharts, RefusesWhatWouldCrushTheModel) {
   if (!std::ifstream(path).good()) GTEST_SKIP() << "elephant.off is missing: run `make data`";
   const PolygonMesh mesh = read_mesh(path);
   const Triangulation t = triangulate(mesh.vertices, mesh.faces);
-  std::vector<int> labels;
-  const std::vector<int> nearest = nearest_labels(mesh);
-  for (Eigen::Index i = 0; i < t.triangles.rows(); ++i) labels.push_back(nearest[t.face_of_triangle[i]]);
-  const CotangentWeights weights = cotangent_weights(mesh.vertices, t.triangles).cwiseMax(0.0);
-  Laplacian laplacian(static_cast<int>(mesh.vertices.rows()), t.triangles);
-  const double shift = laplacian.assemble(weights, 1e-8);
+  const std::vector<int> labels = test_meshes::nearest_triangle_labels(mesh, t);
   const QualityMeasure quality(mesh.vertices, t.triangles, labels);
-  const FlatCharts flat = flatten_charts(
-      mesh.vertices, mesh.vertices, t.triangles, labels, weights, laplacian.matrix(), shift, quality,
-      [](const Eigen::MatrixX3d& y) { return y; }, DeformOptions{}.max_collapsed_share);
+  const FlatCharts flat = test_meshes::flatten_from_input(mesh, t, labels, quality);
   EXPECT_FALSE(flat.found);
   EXPECT_GT(flat.collapsed_area, DeformOptions{}.max_collapsed_share);
 }

@@ -11,17 +11,13 @@
 #include <set>
 
 #include "deform/barrier_energy.h"
-#include "deform/deform.h"
-#include "deform/flatten_charts.h"
 #include "deform/quality.h"
 #include "io/read_mesh.h"
-#include "labels/nearest_labels.h"
-#include "linear_algebra/cotangent_weights.h"
-#include "linear_algebra/laplacian.h"
 #include "deform/untangle_flat_charts.h"
 #include "linear_algebra/minimize_lbfgs.h"
 #include "linear_algebra/minimize_newton.h"
 #include "mesh/triangulate.h"
+#include "nearest_flat_start.h"
 #include "test_meshes.h"
 
 namespace polycube {
@@ -166,16 +162,9 @@ TEST(UntangleFlatCharts, NewtonAndLbfgsOpenTheSameTriangles) {
   if (!std::ifstream(path).good()) GTEST_SKIP() << "fandisk.off is missing: run `make data`";
   const PolygonMesh mesh = read_mesh(path);
   const Triangulation t = triangulate(mesh.vertices, mesh.faces);
-  std::vector<int> labels;
-  const std::vector<int> nearest = nearest_labels(mesh);
-  for (Eigen::Index i = 0; i < t.triangles.rows(); ++i) labels.push_back(nearest[t.face_of_triangle[i]]);
-  const CotangentWeights weights = cotangent_weights(mesh.vertices, t.triangles).cwiseMax(0.0);
-  Laplacian laplacian(static_cast<int>(mesh.vertices.rows()), t.triangles);
-  const double shift = laplacian.assemble(weights, 1e-8);
+  const std::vector<int> labels = test_meshes::nearest_triangle_labels(mesh, t);
   const QualityMeasure quality(mesh.vertices, t.triangles, labels);
-  const FlatCharts flat = flatten_charts(
-      mesh.vertices, mesh.vertices, t.triangles, labels, weights, laplacian.matrix(), shift, quality,
-      [](const Eigen::MatrixX3d& y) { return y; }, DeformOptions{}.max_collapsed_share);
+  const FlatCharts flat = test_meshes::flatten_from_input(mesh, t, labels, quality);
   ASSERT_GT(flat.first_positions.rows(), 0);
   const FaceStates tangled = quality.face_states(flat.first_positions);
   ASSERT_GT(tangled.flipped_count, 0);
