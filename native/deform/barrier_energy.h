@@ -21,8 +21,8 @@ namespace polycube {
 // and every gradient, and its arithmetic is that untangling's, operation
 // for operation (the minimisation is not convex: a rounding changed here
 // changes which triangles end collapsed).
-inline double barrier_energy(const Eigen::Matrix2d& j, double weight, double eps, double theta,
-                             Eigen::Matrix2d* gradient = nullptr) {
+[[gnu::always_inline]] inline double barrier_energy(const Eigen::Matrix2d& j, double weight, double eps, double theta,
+                                                Eigen::Matrix2d* gradient = nullptr) {
   const double d = j.determinant();
   const double root = std::sqrt(eps * eps + d * d);
   const double chi = 0.5 * (d + root), chi_d = 0.5 * (1.0 + d / root);

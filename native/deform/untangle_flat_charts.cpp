@@ -93,7 +93,8 @@ using Matrix6d = Eigen::Matrix<double, 6, 6>;
 // One triangle's energy (header, barrier_energy.h) at `at` with barrier
 // width eps and, when asked, its gradient by its two edges (columns; corner 0
 // gets minus their sum).
-double triangle_energy(const Triangle& t, const Eigen::VectorXd& at, double eps, Eigen::Matrix2d* by_edges = nullptr) {
+[[gnu::always_inline]] inline double triangle_energy(const Triangle& t, const Eigen::VectorXd& at, double eps,
+                                                 Eigen::Matrix2d* by_edges = nullptr) {
   Eigen::Matrix2d j, by_j;
   determinant(t, at, &j);
   const double value = barrier_energy(j, t.weight, eps, kTheta, by_edges ? &by_j : nullptr);
