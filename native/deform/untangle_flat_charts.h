@@ -64,7 +64,7 @@ struct CollapseBound {
 // triangles on, L-BFGS below. Newton's rounds reach a lower energy in a few
 // factorisations where L-BFGS stops at its 300 gradients, which at scale
 // costs less: the stage 62 -> 41 s on B0 refined 64 times, 84 -> 49 s on
-// fandisk refined 16 times, edge error lower (peak memory 1.7 -> 3.2 GiB on
+// fandisk refined 16 times, edge error lower (peak memory 1.6 -> 3.0 GiB on
 // B0: the factor). Below, a factorisation costs dozens of L-BFGS iterations,
 // the untangling ends no faster (lion 4 -> 8 s), and the rounds, settled at
 // each eps, leave more triangles without room to put on a line (fandisk 0 ->
