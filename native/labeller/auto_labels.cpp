@@ -44,10 +44,9 @@ int smoothing_rings(const PolygonMesh& mesh, const Triangulation& triangulation,
   return std::max(rings, static_cast<int>(std::lround(std::min(reach * std::sqrt(area) / length, kMostRings))));
 }
 
-// The labeling's invalid violations (validate_labels.h: the polycube
-// conditions and reversed charts).
-int invalid_violations(const PolygonMesh& mesh, const std::vector<int>& labels) {
-  const LabelValidation validation = validate_labels(mesh, labels);
+// The violations that make a labeling invalid (validate_labels.h: the
+// polycube conditions and reversed charts).
+int invalid_violations(const LabelValidation& validation) {
   return static_cast<int>(std::count_if(validation.violations.begin(), validation.violations.end(),
                                         [](const LabelViolation& v) { return makes_invalid(v.kind); }));
 }
@@ -71,7 +70,7 @@ std::vector<int> unreverse_charts(const PolygonMesh& mesh, const MeshAdjacency& 
   if (!reversed) return labels;
   moved = repair_charts(adjacency, energy, std::move(moved), moves);
   moved = merge_tiny_charts(adjacency, energy, areas, std::move(moved), moves);
-  return invalid_violations(mesh, moved) < invalid_violations(mesh, labels) ? moved : labels;
+  return invalid_violations(validate_labels(mesh, moved)) < invalid_violations(validation) ? moved : labels;
 }
 
 }  // namespace
