@@ -26,14 +26,9 @@ namespace {
 // kMostRings (a ring costs one pass over the faces' neighbours, and 1M
 // triangles would ask for 55 of them per iteration).
 constexpr double kMostRings = 48;
-int smoothing_rings(const PolygonMesh& mesh, const Triangulation& triangulation, double reach, int rings) {
+int smoothing_rings(const PolygonMesh& mesh, const std::vector<double>& areas, double reach, int rings) {
   double area = 0.0, length = 0.0;
-  const Triangles& triangles = triangulation.triangles;
-  for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
-    const Eigen::Vector3d a = mesh.vertices.row(triangles(t, 0)), b = mesh.vertices.row(triangles(t, 1)),
-                          c = mesh.vertices.row(triangles(t, 2));
-    area += 0.5 * (b - a).cross(c - a).norm();
-  }
+  for (double a : areas) area += a;
   const PolygonFaces& faces = mesh.faces;
   for (int f = 0; f < faces.count(); ++f)
     for (int k = 0, size = faces.size(f), first = faces.offsets[f]; k < size; ++k)
@@ -104,8 +99,10 @@ std::vector<int> auto_labels(const PolygonMesh& input, const AutoLabelOptions& o
   const int vertex_count = static_cast<int>(mesh.vertices.rows());
   const MeshAdjacency adjacency = mesh_adjacency(mesh.faces, vertex_count);
   const Triangulation triangulation = triangulate(mesh.vertices, mesh.faces);
+  std::vector<double> areas(mesh.faces.count());
+  for (int f = 0; f < mesh.faces.count(); ++f) areas[f] = 0.5 * newell_normal(mesh.vertices, mesh.faces, f).norm();
   const StraightenOptions so{options.straighten_iterations,
-                             smoothing_rings(mesh, triangulation, options.straighten_reach, options.straighten_rings)};
+                             smoothing_rings(mesh, areas, options.straighten_reach, options.straighten_rings)};
   PolygonMesh straight{straighten(mesh.vertices, triangulation.triangles, so), mesh.faces};
   const LabelEnergy energy = label_energy(straight, mesh.vertices, adjacency, options.compactness);
   std::vector<int> labels(mesh.faces.count());
@@ -116,8 +113,6 @@ std::vector<int> auto_labels(const PolygonMesh& input, const AutoLabelOptions& o
     labels[f] = best;  // the nearest axis (lowest label on ties)
   }
   labels = alpha_expansion(energy, std::move(labels));
-  std::vector<double> areas(mesh.faces.count());
-  for (int f = 0; f < mesh.faces.count(); ++f) areas[f] = 0.5 * newell_normal(mesh.vertices, mesh.faces, f).norm();
   if (options.repair) {
     labels = merge_tiny_charts(adjacency, energy, areas, std::move(labels), options.repair_moves);
     labels = repair_charts(adjacency, energy, std::move(labels), options.repair_moves);
