@@ -38,14 +38,14 @@
 namespace polycube {
 
 struct UntangledCharts {
-  Vertices positions;       // every chart flat on its axis, like `flat`
-  int rounds = 0;           // minimisations done (one per eps)
-  int local_rounds = 0;     // of them, over the neighbourhoods of triangles without room
-  int put_on_a_line = 0;    // triangles left collapsed: no room in their charts
-  int iterations = 0;       // the minimiser's, over every round
-  int factorizations = 0;   // Newton's sparse factorisations, over every round
-  bool untangled = false;   // every other triangle has positive area in its chart
-  bool refused = false;     // stopped once past the bound (below): `positions` unfinished
+  Vertices positions;      // every chart flat on its axis, like `flat`
+  int rounds = 0;          // minimisations done (one per eps)
+  int local_rounds = 0;    // of them, over the neighbourhoods of triangles without room
+  int put_on_a_line = 0;   // triangles left collapsed: no room in their charts
+  int iterations = 0;      // the minimiser's, over every round
+  int factorizations = 0;  // Newton's sparse factorisations, over every round
+  bool untangled = false;  // every other triangle has positive area in its chart
+  bool refused = false;    // stopped once past the bound (below): `positions` unfinished
 };
 
 // A triangle put on a line stays collapsed in every later round, so the
@@ -78,7 +78,8 @@ constexpr double kUntangleLocalShare = 0.002;
 // `flat`: an exact polycube of `input` (every triangle on a plane of its
 // label's axis, per-triangle labels 0..5), e.g. from flatten_charts.h.
 // `local_share`: rounds are local once at most this share of the triangles
-// is without room (0: never). `bound`: stop, refused, once the triangles on
+// is without room, or at most a couple of hundred that are a small share
+// (0: never). `bound`: stop, refused, once the triangles on
 // a line pass it.
 UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat, const Triangles& triangles,
                                      const std::vector<int>& triangle_labels, int max_rounds = kUntangleRounds,
