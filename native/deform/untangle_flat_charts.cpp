@@ -26,6 +26,13 @@ constexpr double kFirstEps = 0.1;
 // with a larger floor: we need positive area, not the exact minimiser).
 constexpr double kMinEpsDecrease = 0.3;
 constexpr int kIterationsPerRound = 300;
+// L-BFGS's iterations in a round that starts untangled (every triangle with
+// room: the polish after local rounds, header). It starts near its minimum,
+// and the iterations past these lower the edge error by about 1% at the
+// cost of a round over the whole mesh (diplodocus: 1.4 s each, two or three
+// per untangling, eight untanglings; deformation 42 -> 22 s, collapsed area
+// 0.14% -> 0.12%, edge error 0.295 -> 0.307).
+constexpr int kPolishIterations = 100;
 // Newton's iterations per round: from the last round's minimum it needs a
 // few; the cap only bounds a round that creeps.
 constexpr int kNewtonIterations = 50;
@@ -323,7 +330,8 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
         gradient.tail(gradient.size() - free_count).setZero();  // held
         return value;
       };
-      const LbfgsResult run = minimize_lbfgs(objective, at, kIterationsPerRound, 1e-9, 1e-8);
+      const LbfgsResult run =
+          minimize_lbfgs(objective, at, result.untangled ? kPolishIterations : kIterationsPerRound, 1e-9, 1e-8);
       result.iterations += run.iterations;
       return run.value;
     }
