@@ -26,13 +26,21 @@ double agreement(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return d2 * d2;
 }
 
-// The triangles sharing a corner with each triangle (itself included), each once.
-std::vector<std::vector<int>> corner_neighbours(Eigen::Index vertex_count, const Triangles& triangles) {
+// The triangles sharing a corner with each triangle (itself included), each
+// once: triangle t's are list[offsets[t]] up to list[offsets[t + 1]]. One
+// array, not a vector per triangle: the smoothing walks them every ring.
+struct CornerNeighbours {
+  std::vector<long> offsets;
+  std::vector<int> list;
+};
+
+CornerNeighbours corner_neighbours(Eigen::Index vertex_count, const Triangles& triangles) {
   const TriangleIncidence incidence(vertex_count, triangles);
-  std::vector<std::vector<int>> neighbours(triangles.rows());
-#pragma omp parallel for num_threads(parallel_threads(triangles.rows())) schedule(static)
-  for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
-    std::vector<int>& list = neighbours[t];
+  const Eigen::Index m = triangles.rows();
+  std::vector<std::vector<int>> per_triangle(m);
+#pragma omp parallel for num_threads(parallel_threads(m)) schedule(static)
+  for (Eigen::Index t = 0; t < m; ++t) {
+    std::vector<int>& list = per_triangle[t];
     for (int k = 0; k < 3; ++k) {
       const int v = triangles(t, k);
       list.insert(list.end(), incidence.triangles.begin() + incidence.offsets[v],
@@ -40,6 +48,14 @@ std::vector<std::vector<int>> corner_neighbours(Eigen::Index vertex_count, const
     }
     std::sort(list.begin(), list.end());
     list.erase(std::unique(list.begin(), list.end()), list.end());
+  }
+  CornerNeighbours neighbours;
+  neighbours.offsets.resize(m + 1, 0);
+  for (Eigen::Index t = 0; t < m; ++t) neighbours.offsets[t + 1] = neighbours.offsets[t] + per_triangle[t].size();
+  neighbours.list.reserve(neighbours.offsets[m]);
+  for (std::vector<int>& list : per_triangle) {
+    neighbours.list.insert(neighbours.list.end(), list.begin(), list.end());
+    std::vector<int>().swap(list);
   }
   return neighbours;
 }
@@ -60,11 +76,15 @@ Vertices straighten(const Vertices& input, const Triangles& triangles, const Str
   cholesky.factorize(laplacian.matrix());
   const Components parts = components(n, triangles);
   const Eigen::MatrixX3d centroids = component_centroids(input, parts);
-  const std::vector<std::vector<int>> neighbours = corner_neighbours(n, triangles);
+  const CornerNeighbours neighbours = corner_neighbours(n, triangles);
+  // Each neighbour's weight in the smoothing (area times agreement of the
+  // normals), the same for every ring of an iteration.
+  std::vector<double> weight(neighbours.list.size());
 
   std::vector<double> input_area(m);
   for (Eigen::Index t = 0; t < m; ++t) {
-    const Eigen::Vector3d a = input.row(triangles(t, 0)), b = input.row(triangles(t, 1)), c = input.row(triangles(t, 2));
+    const Eigen::Vector3d a = input.row(triangles(t, 0)), b = input.row(triangles(t, 1)),
+                          c = input.row(triangles(t, 2));
     input_area[t] = 0.5 * (b - a).cross(c - a).norm();
   }
   std::vector<Eigen::Vector3d> normal(m), smooth(m), next(m);
@@ -78,12 +98,19 @@ Vertices straighten(const Vertices& input, const Triangles& triangles, const Str
       const double length = cross.norm();
       normal[t] = length > 0.0 ? Eigen::Vector3d(cross / length) : Eigen::Vector3d::Zero();
     }
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (Eigen::Index t = 0; t < m; ++t)
+      for (long i = neighbours.offsets[t]; i < neighbours.offsets[t + 1]; ++i) {
+        const int u = neighbours.list[i];
+        weight[i] = agreement(normal[t], normal[u]) * input_area[u];
+      }
     smooth = normal;
     for (int ring = 0; ring < options.rings; ++ring) {
 #pragma omp parallel for num_threads(threads) schedule(static)
       for (Eigen::Index t = 0; t < m; ++t) {
         Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-        for (int u : neighbours[t]) sum += agreement(normal[t], normal[u]) * input_area[u] * smooth[u];
+        for (long i = neighbours.offsets[t]; i < neighbours.offsets[t + 1]; ++i)
+          sum += weight[i] * smooth[neighbours.list[i]];
         const double length = sum.norm();
         next[t] = length > 0.0 ? Eigen::Vector3d(sum / length) : smooth[t];
       }
