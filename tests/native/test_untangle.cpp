@@ -113,7 +113,6 @@ TEST(UntangleFlatCharts, MovesAChartPlaneToGiveItsNeighboursRoom) {
   EXPECT_LT(after.area_error, 0.1);
 }
 
-
 TEST(UntangleFlatCharts, LocalRoundsKeepTheContract) {
   // A triangle of the block's -X side labelled +X: flat on the same plane
   // as its neighbours, facing the other way, it has no room round after
@@ -139,7 +138,32 @@ TEST(UntangleFlatCharts, LocalRoundsKeepTheContract) {
   EXPECT_LT(l.edge_error, g.edge_error + 0.01);
 }
 
-
+TEST(UntangleFlatCharts, RoundsGoLocalForAFewTrianglesWithoutRoomNotForAShareOfThem) {
+  // The block's 128 triangles: one without room is under 1% of them, and
+  // the default rounds go local for it; two are over 1% (a region whose
+  // planes may still have to move on a mesh this small) and stay global.
+  // Before the count rule, rounds went local only under 0.2% of the
+  // triangles: never on a mesh under 500 triangles.
+  Block one = block();
+  ASSERT_EQ(one.triangles.rows(), 128);
+  Block two = one;
+  const auto first = std::find(one.labels.begin(), one.labels.end(), 1);
+  ASSERT_NE(first, one.labels.end());
+  *first = 0;
+  auto in_two = two.labels.begin() + (first - one.labels.begin());
+  *in_two = 0;
+  const auto second = std::find(two.labels.rbegin(), two.labels.rend(), 3);  // a -Y triangle, far from the -X one
+  ASSERT_NE(second, two.labels.rend());
+  *second = 2;
+  const UntangledCharts a = untangle_flat_charts(one.vertices, one.vertices, one.triangles, one.labels);
+  const UntangledCharts b = untangle_flat_charts(two.vertices, two.vertices, two.triangles, two.labels);
+  EXPECT_GT(a.local_rounds, 0);
+  EXPECT_EQ(a.put_on_a_line, 1);
+  EXPECT_EQ(b.local_rounds, 0);
+  EXPECT_EQ(b.put_on_a_line, 2);
+  EXPECT_TRUE(a.untangled);
+  EXPECT_TRUE(b.untangled);
+}
 
 TEST(UntangleFlatCharts, StopsOnceTheCollapsesPassTheCallersBound) {
   // The block with a triangle facing the wrong way (above): it ends on a
@@ -162,9 +186,9 @@ TEST(UntangleFlatCharts, StopsOnceTheCollapsesPassTheCallersBound) {
   EXPECT_LT(refused.rounds, unbounded.rounds);
   CollapseBound area;
   area.area = 1e-6;  // the triangle's share of the area is larger
-  EXPECT_TRUE(untangle_flat_charts(b.vertices, b.vertices, b.triangles, b.labels, kUntangleRounds,
-                                   kUntangleLocalShare, area)
-                  .refused);
+  EXPECT_TRUE(
+      untangle_flat_charts(b.vertices, b.vertices, b.triangles, b.labels, kUntangleRounds, kUntangleLocalShare, area)
+          .refused);
   CollapseBound enough;
   // As many as the unbounded result collapses (those put on a line and any
   // their shared unknowns put on a line with them).
