@@ -97,7 +97,10 @@ int ViolationDelta::score_of(const std::vector<int>& candidate, const std::vecto
   const std::vector<int>& on_edge = adjacency_.edge_faces;
 
   // The region: every face of the charts that hold or touch a changed face.
-  std::vector<int> region_charts, region;
+  std::vector<int>& region_charts = scratch_.region_charts;
+  std::vector<int>& region = scratch_.region;
+  region_charts.clear();
+  region.clear();
   auto add_chart = [&](int c) {
     if (chart_stamp_[c] == s) return;
     chart_stamp_[c] = s;
@@ -114,7 +117,10 @@ int ViolationDelta::score_of(const std::vector<int>& candidate, const std::vecto
       local_of_face_[f] = static_cast<int>(region.size());
       region.push_back(f);
     }
-  std::vector<int> edges, vertices;
+  std::vector<int>& edges = scratch_.edges;
+  std::vector<int>& vertices = scratch_.vertices;
+  edges.clear();
+  vertices.clear();
   for (int f : region)
     for (int e : edges_of_face_[f]) {
       if (edge_stamp_[e] == s) continue;
@@ -125,7 +131,8 @@ int ViolationDelta::score_of(const std::vector<int>& candidate, const std::vecto
     }
 
   // The region's charts after the change: outside it no chart changes.
-  UnionFind sets(static_cast<int>(region.size()));
+  UnionFind& sets = scratch_.sets;
+  sets.reset(static_cast<int>(region.size()));
   for (int e : edges)
     for (int i = offsets[e]; i < offsets[e + 1]; ++i)
       for (int j = i + 1; j < offsets[e + 1]; ++j) {
@@ -134,7 +141,12 @@ int ViolationDelta::score_of(const std::vector<int>& candidate, const std::vecto
           sets.join(local_of_face_[a], local_of_face_[b]);
       }
   const int base = charts_.count();  // new charts are numbered from here
-  std::vector<int> new_label, id_of_root(region.size(), -1), new_id(region.size());
+  std::vector<int>& new_label = scratch_.new_label;
+  std::vector<int>& id_of_root = scratch_.id_of_root;
+  std::vector<int>& new_id = scratch_.new_id;
+  new_label.clear();
+  id_of_root.assign(region.size(), -1);
+  new_id.resize(region.size());
   for (size_t i = 0; i < region.size(); ++i) {
     const int r = sets.root(static_cast<int>(i));
     if (id_of_root[r] < 0) {
@@ -147,8 +159,12 @@ int ViolationDelta::score_of(const std::vector<int>& candidate, const std::vecto
   auto label_after = [&](int id) { return id >= base ? new_label[id - base] : charts_.label[id]; };
 
   // Boundaries touching the region, before and after.
-  std::vector<std::uint64_t> before_pairs, after_pairs;
-  std::vector<char> new_open(new_label.size(), 0);
+  std::vector<std::uint64_t>& before_pairs = scratch_.before_pairs;
+  std::vector<std::uint64_t>& after_pairs = scratch_.after_pairs;
+  std::vector<char>& new_open = scratch_.new_open;
+  before_pairs.clear();
+  after_pairs.clear();
+  new_open.assign(new_label.size(), 0);
   for (int e : edges) {
     if (offsets[e + 1] - offsets[e] == 1 && face_stamp_[on_edge[offsets[e]]] == s)
       new_open[after(on_edge[offsets[e]]) - base] = 1;
@@ -169,8 +185,10 @@ int ViolationDelta::score_of(const std::vector<int>& candidate, const std::vecto
   // Opposite charts side by side.
   for (std::uint64_t p : before_pairs)
     if ((charts_.label[p >> 32] ^ 1) == charts_.label[p & 0xffffffffu]) before += 2;
-  std::vector<int> new_neighbours(new_label.size(), 0);
-  std::vector<int> outside;  // unchanged charts beside the region, once per new chart beside them
+  std::vector<int>& new_neighbours = scratch_.new_neighbours;
+  new_neighbours.assign(new_label.size(), 0);
+  std::vector<int>& outside = scratch_.outside;  // unchanged charts beside the region, once per new chart beside them
+  outside.clear();
   for (std::uint64_t p : after_pairs) {
     const int a = static_cast<int>(p >> 32), b = static_cast<int>(p & 0xffffffffu);
     if ((label_after(a) ^ 1) == label_after(b)) now += 2;
@@ -198,7 +216,7 @@ int ViolationDelta::score_of(const std::vector<int>& candidate, const std::vecto
     i = j;
   }
   // Corners: the vertices of the region's faces.
-  std::vector<int> ids;
+  std::vector<int>& ids = scratch_.ids;
   for (int v : vertices) {
     ids.clear();
     for (int k = adjacency_.vertex_offsets[v]; k < adjacency_.vertex_offsets[v + 1]; ++k)

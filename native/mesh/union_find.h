@@ -14,6 +14,12 @@ class UnionFind {
  public:
   explicit UnionFind(int count = 0) : parent_(count) { std::iota(parent_.begin(), parent_.end(), 0); }
 
+  // Back to `count` single sets, keeping the storage.
+  void reset(int count) {
+    parent_.resize(count);
+    std::iota(parent_.begin(), parent_.end(), 0);
+  }
+
   int root(int v) {
     while (parent_[v] != v) {
       parent_[v] = parent_[parent_[v]];
