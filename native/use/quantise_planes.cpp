@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 namespace polycube {
 
@@ -36,40 +35,18 @@ AxisGrid quantise_planes(std::vector<double> coordinates, double h, double toler
   const size_t m = grid.planes.size();
   if (m == 0) return grid;
 
-  // Strictly increasing integers q_i nearest x_i / h in total distance: with
-  // p_i = q_i - i this is an L1 isotonic regression over integers, whose
-  // optimum takes values among floor / ceil of the shifted targets.
-  std::vector<double> target(m);
-  std::vector<long> candidates;
-  for (size_t i = 0; i < m; ++i) {
-    target[i] = grid.planes[i] / h - static_cast<double>(i);
-    candidates.push_back(static_cast<long>(std::floor(target[i])));
-    candidates.push_back(static_cast<long>(std::ceil(target[i])));
-  }
-  std::sort(candidates.begin(), candidates.end());
-  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-  const size_t n = candidates.size();
-  // cost[j]: best total for planes 0..i with p_i = candidates[j]; choice remembers the best j' <= j before.
-  std::vector<double> cost(n, 0.0), next(n);
-  std::vector<std::vector<int>> argmin(m, std::vector<int>(n));
-  for (size_t i = 0; i < m; ++i) {
-    double best = std::numeric_limits<double>::infinity();
-    int best_j = 0;
-    for (size_t j = 0; j < n; ++j) {
-      if (cost[j] < best) {
-        best = cost[j];
-        best_j = static_cast<int>(j);
-      }
-      argmin[i][j] = best_j;
-      next[j] = best + std::abs(candidates[j] - target[i]);
-    }
-    cost.swap(next);
-  }
-  int j = static_cast<int>(std::min_element(cost.begin(), cost.end()) - cost.begin());
+  // Each gap between neighbouring planes to the whole number of steps nearest it in ratio
+  // (a gap of g steps to floor(g) or ceil(g), whichever stretches the grid less), and at
+  // least one. The gaps are what the grid's spacing on the surface follows: a gap of
+  // 1.9 steps given one (to keep a plane near its absolute place) stretches its quads to
+  // almost twice h, so the quads across that strip cut the surface's curves short.
   grid.steps.assign(m, 0);
-  for (size_t i = m; i-- > 0;) {
-    grid.steps[i] = candidates[j] + static_cast<long>(i);
-    j = argmin[i][j];
+  grid.steps[0] = std::lround(grid.planes[0] / h);
+  for (size_t i = 1; i < m; ++i) {
+    const double g = (grid.planes[i] - grid.planes[i - 1]) / h;
+    const double low = std::max(1.0, std::floor(g));
+    const long gap = static_cast<long>(g * g > low * (low + 1.0) ? low + 1.0 : low);
+    grid.steps[i] = grid.steps[i - 1] + gap;
   }
   return grid;
 }

@@ -1,10 +1,12 @@
-// The chart planes of one axis snapped to a grid of spacing h, in order: the
-// k-th plane from the bottom goes to an integer step, every plane to its own
-// step (no chart vanishes or crosses another), as close to its place as that
-// allows (least total distance). The map between the polycube's coordinate
-// and grid steps is piecewise linear and increasing through those pairs, so
-// applied to each axis it takes the polycube onto its quantised polycube,
-// one to one, planes onto grid planes.
+// The chart planes of one axis snapped to a grid of spacing h, in order: every
+// plane to a step of its own (no chart vanishes or crosses another), each gap
+// between neighbouring planes to the whole number of steps nearest it (at
+// least one). The gaps, not the planes' absolute places, are what the grid's
+// spacing on the surface follows: a thin gap's extra step is not taken out of
+// its neighbour, whose quads would stretch across it. The map between the
+// polycube's coordinate and grid steps is piecewise linear and increasing
+// through those pairs, so applied to each axis it takes the polycube onto its
+// quantised polycube, one to one, planes onto grid planes.
 #pragma once
 
 #include <vector>
