@@ -323,7 +323,8 @@ QuadRemesh quad_remesh(const PolygonMesh& input, const Vertices& polycube, const
   }
   for (int v = 0; v < vertex_count; ++v)
     if (!moves[v]) neighbours[v].clear();
-  out.mesh.vertices = relax_on_surface(input.vertices, triangles, neighbours, options.relax_iterations, points);
+  out.mesh.vertices = relax_on_surface(input.vertices, triangles, neighbours, options.relax_iterations, points,
+                                       out.mesh.faces);
 
   out.vertex_corners.resize(vertex_count, 3);
   out.vertex_weights.resize(vertex_count, 3);

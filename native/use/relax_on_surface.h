@@ -11,6 +11,11 @@
 // bridged by one long quad; a near-collapsed sliver stretches its few points
 // far apart. Evening the spacing on the input itself samples those parts too
 // (docs/design.md section 1: quad meshing is one use of the polycube map).
+// Evening the spacing is not the goal in itself, though: moved from a flat
+// part onto a curved one (a thin ear's rim), the same quads sag further off
+// the surface. So a move that lets one of the point's faces sag further (its
+// centre or an edge's midpoint further from the surface) is not made, and
+// the faces' largest distance to the surface never grows.
 #pragma once
 
 #include <vector>
@@ -29,13 +34,16 @@ struct SurfacePoint {
 //   surface, triangles  the surface
 //   neighbours          per vertex, the vertices whose mean it moves toward (none: it stays)
 //   iterations          sweeps (each moves every vertex half way to its target)
+//   faces               the faces the points make (indices into points), or none: each move is
+//                       then made whatever it does to them
 //   crease_degrees      an edge whose triangles' normals are further apart is a crease
 // In/out:
 //   points              per vertex, where it lies on the surface (a triangle of it)
 // Returns the positions of the points.
 Vertices relax_on_surface(const Vertices& surface, const Triangles& triangles,
                           const std::vector<std::vector<int>>& neighbours, int iterations,
-                          std::vector<SurfacePoint>& points, double crease_degrees = 80.0);
+                          std::vector<SurfacePoint>& points, const PolygonFaces& faces = {},
+                          double crease_degrees = 80.0);
 
 // The point of the surface's triangle t at its weights.
 Eigen::Vector3d surface_position(const Vertices& surface, const Triangles& triangles, const SurfacePoint& p);
