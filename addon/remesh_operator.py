@@ -40,6 +40,25 @@ def _carry_uv_maps(source, target, result):
             target.uv_layers.active = new
 
 
+def edge_length_for_count(mesh, positions, labels, target_faces, area):
+    """The edge length whose remesh has about `target_faces` quads. A quad of side h
+    covers h^2 of the surface, which gives a first h; the polycube's planes then snap
+    to whole grid steps (thin gaps get at least one), so the count runs over by a few
+    percent up to a sixth: one correction by the square root of the ratio, and the
+    nearer of the two counts wins. The trials skip the relaxation, which moves
+    vertices and keeps the count."""
+    def count(h):
+        trial = polycube_native.quad_remesh(mesh.vertices, mesh.face_indices, mesh.face_sizes, positions,
+                                            labels, edge_length=h, relax_iterations=0)
+        return len(trial["face_sizes"])
+    first = (area / target_faces) ** 0.5
+    first_count = count(first)
+    second = first * (first_count / target_faces) ** 0.5
+    if first_count == target_faces or second == first:
+        return first
+    return second if abs(count(second) - target_faces) < abs(first_count - target_faces) else first
+
+
 class OBJECT_OT_polycube_remesh(bpy.types.Operator):
     """A new all-quad object from the last deformation: a grid laid on the polycube's
     faces and carried back onto the surface"""
@@ -73,9 +92,8 @@ class OBJECT_OT_polycube_remesh(bpy.types.Operator):
         obj = context.active_object
         try:
             mesh, positions, labels = polycube_of(obj)
-            # A quad of side h covers h^2 of the input: the count fixes h (scaled by the polycube's own
-            # size inside the module, so the count holds on the polycube too).
-            h = self.edge_length if self.mode == 'EDGE_LENGTH' else (mesh_area(obj.data) / self.target_faces) ** 0.5
+            h = (self.edge_length if self.mode == 'EDGE_LENGTH' else
+                 edge_length_for_count(mesh, positions, labels, self.target_faces, mesh_area(obj.data)))
             result = polycube_native.quad_remesh(mesh.vertices, mesh.face_indices, mesh.face_sizes, positions,
                                                  labels, edge_length=h, relax_iterations=self.relax)
         except ValueError as error:
