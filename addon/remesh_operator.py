@@ -53,9 +53,9 @@ def edge_length_for_count(mesh, positions, labels, target_faces, area):
         return len(trial["face_sizes"])
     first = (area / target_faces) ** 0.5
     first_count = count(first)
-    second = first * (first_count / target_faces) ** 0.5
-    if first_count == target_faces or second == first:
+    if first_count in (0, target_faces):  # nothing to correct from (0: the module reports it)
         return first
+    second = first * (first_count / target_faces) ** 0.5
     return second if abs(count(second) - target_faces) < abs(first_count - target_faces) else first
 
 
