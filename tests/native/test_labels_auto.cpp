@@ -485,7 +485,12 @@ TEST(LastResort, TheAnchorBecomesAnExactPolycube) {
   for (const DeformResult::FlattenAttempt& a : r.flatten_attempts)
     if (a.kept) kept_above = std::max(kept_above, a.collapsed_area);
   EXPECT_GT(kept_above, options.max_collapsed_share);
-  EXPECT_LT(r.figures.collapsed_area, 0.05);
+  // The further runs keep the relabelling's moves that break no polycube
+  // condition (keep_valid_moves.h): the walls of its tube, which the whole
+  // move mended by the repair flattened to nothing (3.05% of the area), keep
+  // their area.
+  EXPECT_LT(r.figures.collapsed_area, 0.005);
+  EXPECT_LT(r.figures.collapsed_faces, 0.01 * mesh.faces.count());
 }
 
 // Stage 9 raises only the bound on collapse: a run none of whose

@@ -9,6 +9,7 @@
 #include "io/labels_io.h"
 #include "io/read_mesh.h"
 #include "labels/axis.h"
+#include "labels/keep_valid_moves.h"
 #include "labels/nearest_labels.h"
 #include "labels/orientation.h"
 #include "labels/validate_labels.h"
@@ -321,6 +322,72 @@ TEST(ViolationDelta, EqualsTheWholeCount) {
     }
   }
   EXPECT_EQ(checked, 720);
+}
+
+// What keeping each move that raises no violation, tried one at a time with
+// the moves kept before it in place, gives when every try is a whole count.
+std::vector<int> kept_by_whole_counts(const MeshAdjacency& adjacency, const std::vector<int>& labels,
+                                      const std::vector<int>& moved, const std::vector<int>& changed) {
+  const int limit = violation_score(adjacency, labels);
+  std::vector<int> result = labels;
+  for (int f : changed) {
+    result[f] = moved[f];
+    if (violation_score(adjacency, result) > limit) result[f] = labels[f];
+  }
+  return result;
+}
+
+// The box's whole top turned +X, the row beside the +X side first, and an
+// island on the bottom: the rows go over one by one until the top chart
+// would vanish (+X would then meet -X); the island (one neighbour) never.
+TEST(KeepValidMoves, KeepsTheMovesThatBreakNothingInTurn) {
+  const LabelledMesh m = box6();
+  const MeshAdjacency adjacency = mesh_adjacency(m.mesh.faces, static_cast<int>(m.mesh.vertices.rows()));
+  const std::vector<std::vector<int>> edges = face_edges(adjacency, m.mesh.faces.count());
+  std::vector<int> changed = faces_where(m, kPZ, [](const Eigen::Vector3d&) { return true; });
+  std::stable_sort(changed.begin(), changed.end(),
+                   [&](int a, int b) { return centroid(m.mesh, a).x() > centroid(m.mesh, b).x(); });
+  const std::vector<int> island = faces_where(
+      m, kNZ, [](const Eigen::Vector3d& c) { return std::abs(c.x() - 2.5) < 0.1 && std::abs(c.y() - 2.5) < 0.1; });
+  ASSERT_EQ(island.size(), 1u);
+  changed.push_back(island[0]);
+  std::vector<int> moved = m.labels;
+  for (int f : changed) moved[f] = kPX;
+  int kept = -1;
+  const std::vector<int> result = keep_valid_moves(adjacency, edges, m.labels, moved, changed, &kept);
+  EXPECT_EQ(violation_score(adjacency, result), 0);
+  EXPECT_EQ(result, kept_by_whole_counts(adjacency, m.labels, moved, changed));
+  EXPECT_GE(kept, 30);  // five rows of six at least
+  EXPECT_LT(kept, 36);  // not the whole top
+  EXPECT_EQ(result[island[0]], kNZ);
+}
+
+// The same as whole counts on a real model's noisy labels, past the point
+// where the incremental count is rebuilt (every 32 moves kept).
+TEST(KeepValidMoves, EqualsWholeCountsOnTheElephant) {
+  const std::string path = std::string(POLYCUBE_MESH_DATA) + "/elephant.off";
+  if (!std::ifstream(path).good()) GTEST_SKIP() << path << " is missing: run `make data`";
+  const PolygonMesh mesh = read_mesh(path);
+  const int face_count = mesh.faces.count();
+  const MeshAdjacency adjacency = mesh_adjacency(mesh.faces, static_cast<int>(mesh.vertices.rows()));
+  const std::vector<std::vector<int>> edges = face_edges(adjacency, face_count);
+  const std::vector<std::vector<int>> neighbours = face_neighbours(adjacency, face_count);
+  const std::vector<int> labels = nearest_labels(mesh);
+  // Faces on chart boundaries take a neighbour's label, as stage 8 moves them.
+  std::vector<int> moved = labels, changed;
+  for (int f = 0; f < face_count && changed.size() < 400; f += 3)
+    for (int g : neighbours[f])
+      if (labels[g] != labels[f] && (labels[g] ^ 1) != labels[f]) {
+        moved[f] = labels[g];
+        changed.push_back(f);
+        break;
+      }
+  int kept = 0;
+  const std::vector<int> result = keep_valid_moves(adjacency, edges, labels, moved, changed, &kept);
+  EXPECT_EQ(result, kept_by_whole_counts(adjacency, labels, moved, changed));
+  EXPECT_GT(kept, 64);
+  EXPECT_LT(kept, static_cast<int>(changed.size()));
+  EXPECT_LE(violation_score(adjacency, result), violation_score(adjacency, labels));
 }
 
 TEST(Orientation, OutwardInwardInconsistentAndNonOrientable) {
