@@ -276,6 +276,20 @@ PolygonMesh reversed(PolygonMesh mesh) {
   return mesh;
 }
 
+// A model of Debian's libcgal-demo with what the repair's counts need.
+struct CountedModel {
+  explicit CountedModel(const PolygonMesh& m)
+      : mesh(m),
+        adjacency(mesh_adjacency(mesh.faces, static_cast<int>(mesh.vertices.rows()))),
+        edges(face_edges(adjacency, mesh.faces.count())),
+        neighbours(face_neighbours(adjacency, mesh.faces.count())) {}
+  PolygonMesh mesh;
+  MeshAdjacency adjacency;
+  std::vector<std::vector<int>> edges, neighbours;
+};
+
+std::string cgal_path(const std::string& name) { return std::string(POLYCUBE_MESH_DATA) + "/" + name + ".off"; }
+
 // The repair's incremental score (labels/violation_score.h) gives the same
 // number as counting the whole mesh, for every kind of move the repair makes:
 // single faces, whole charts (merging and splitting charts) and bands, on a
@@ -283,14 +297,13 @@ PolygonMesh reversed(PolygonMesh mesh) {
 TEST(ViolationDelta, EqualsTheWholeCount) {
   int checked = 0;
   for (const char* name : {"elephant", "mech-holes-shark"}) {
-    const std::string path = std::string(POLYCUBE_MESH_DATA) + "/" + name + ".off";
+    const std::string path = cgal_path(name);
     if (!std::ifstream(path).good()) GTEST_SKIP() << path << " is missing: run `make data`";
-    const PolygonMesh mesh = read_mesh(path);
-    const int face_count = mesh.faces.count();
-    const MeshAdjacency adjacency = mesh_adjacency(mesh.faces, static_cast<int>(mesh.vertices.rows()));
-    const std::vector<std::vector<int>> edges = face_edges(adjacency, face_count);
-    const std::vector<std::vector<int>> neighbours = face_neighbours(adjacency, face_count);
-    std::vector<int> labels = nearest_labels(mesh);
+    const CountedModel model(read_mesh(path));
+    const MeshAdjacency& adjacency = model.adjacency;
+    const std::vector<std::vector<int>>&edges = model.edges, &neighbours = model.neighbours;
+    const int face_count = model.mesh.faces.count();
+    std::vector<int> labels = nearest_labels(model.mesh);
     std::mt19937 random(7);
     for (int round = 0; round < 6; ++round) {
       ViolationDelta delta(adjacency, edges, labels);
@@ -365,14 +378,13 @@ TEST(KeepValidMoves, KeepsTheMovesThatBreakNothingInTurn) {
 // The same as whole counts on a real model's noisy labels, past the point
 // where the incremental count is rebuilt (every 32 moves kept).
 TEST(KeepValidMoves, EqualsWholeCountsOnTheElephant) {
-  const std::string path = std::string(POLYCUBE_MESH_DATA) + "/elephant.off";
+  const std::string path = cgal_path("elephant");
   if (!std::ifstream(path).good()) GTEST_SKIP() << path << " is missing: run `make data`";
-  const PolygonMesh mesh = read_mesh(path);
-  const int face_count = mesh.faces.count();
-  const MeshAdjacency adjacency = mesh_adjacency(mesh.faces, static_cast<int>(mesh.vertices.rows()));
-  const std::vector<std::vector<int>> edges = face_edges(adjacency, face_count);
-  const std::vector<std::vector<int>> neighbours = face_neighbours(adjacency, face_count);
-  const std::vector<int> labels = nearest_labels(mesh);
+  const CountedModel model(read_mesh(path));
+  const MeshAdjacency& adjacency = model.adjacency;
+  const std::vector<std::vector<int>>& neighbours = model.neighbours;
+  const int face_count = model.mesh.faces.count();
+  const std::vector<int> labels = nearest_labels(model.mesh);
   // Faces on chart boundaries take a neighbour's label, as stage 8 moves them.
   std::vector<int> moved = labels, changed;
   for (int f = 0; f < face_count && changed.size() < 400; f += 3)
@@ -383,7 +395,7 @@ TEST(KeepValidMoves, EqualsWholeCountsOnTheElephant) {
         break;
       }
   int kept = 0;
-  const std::vector<int> result = keep_valid_moves(adjacency, edges, labels, moved, changed, &kept);
+  const std::vector<int> result = keep_valid_moves(adjacency, model.edges, labels, moved, changed, &kept);
   EXPECT_EQ(result, kept_by_whole_counts(adjacency, labels, moved, changed));
   EXPECT_GT(kept, 64);
   EXPECT_LT(kept, static_cast<int>(changed.size()));
