@@ -1,6 +1,7 @@
 #include "use/quad_remesh.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -123,7 +124,7 @@ QuadRemesh quad_remesh(const PolygonMesh& input, const Vertices& polycube, const
   bool input_open = false;
   for (int e = 0; e < input_adjacency.edge_count(); ++e) input_open |= input_adjacency.faces_of_edge(e) == 1;
   if (input_open) {
-    const StraightBoundaries straight = straighten_boundaries(input, polycube, surface, grid, 2.0 * h);
+    const StraightBoundaries straight = straighten_boundaries(input, polycube, surface, grid, 6.0 * h);
     out.boundary_loops = straight.loops;
     out.straightened_loops = straight.straightened;
     for (FlatTriangle& t : flats) {
@@ -135,6 +136,12 @@ QuadRemesh quad_remesh(const PolygonMesh& input, const Vertices& polycube, const
       const Eigen::Vector2d e1 = t.corner[1] - t.corner[0], e2 = t.corner[2] - t.corner[0];
       t.area2 = e1.x() * e2.y() - e1.y() * e2.x();
     }
+    // A triangle laid flat on a straightened run has no area left: like a sliver, it holds no grid point.
+    flats.erase(std::remove_if(flats.begin(), flats.end(),
+                               [&](const FlatTriangle& t) {
+                                 return !(std::abs(t.area2) > 1e-14 * surface.diagonal * surface.diagonal);
+                               }),
+                flats.end());
   }
 
   // Grid squares by the flat triangle under their centre, grid vertices by the

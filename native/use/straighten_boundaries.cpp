@@ -6,8 +6,10 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <utility>
 
 #include "linear_algebra/sparse_cholesky.h"
+#include "use/untangle_in_charts.h"
 
 namespace polycube {
 namespace {
@@ -82,12 +84,15 @@ StraightBoundaries straighten_boundaries(const PolygonMesh& input, const Vertice
     if (!surface.face_carries_area[f]) continue;
     before[t] = flat_area2(polycube, triangles, static_cast<int>(t), surface.face_label[f]);
   }
+  std::vector<int> counted(triangles.rows(), -1);  // per triangle its label where keeps_sides looks at it
+  for (Eigen::Index t = 0; t < triangles.rows(); ++t)
+    if (before[t] > tiny) counted[t] = surface.face_label[surface.triangulation.face_of_triangle[t]];
   auto keeps_sides = [&](const Vertices& p) {
     for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
       const int f = surface.triangulation.face_of_triangle[t];
-      if (!surface.face_carries_area[f]) continue;
+      if (counted[t] < 0) continue;
       const double after = flat_area2(p, triangles, static_cast<int>(t), surface.face_label[f]);
-      if (before[t] > tiny && !(after > 1e-3 * before[t])) return false;
+      if (!(after > 1e-3 * before[t])) return false;
     }
     return true;
   };
@@ -101,10 +106,11 @@ StraightBoundaries straighten_boundaries(const PolygonMesh& input, const Vertice
   // on the other boundaries, on the planes of that axis, at pinned vertices and beyond a reach of
   // the loop (four steps past its largest move: a loop's cost does not grow with the mesh).
   std::vector<int> source(n, -1);
-  std::vector<int> near;
+  std::vector<int> near, free_axes(n, 0);  // of the last displacement: the coordinates it solved for
   auto displacement = [&](const std::map<int, Move>& moves) {
     Vertices field = Vertices::Zero(n, 3);
     double largest = 0.0;
+    for (int v : near) free_axes[v] = 0;
     near.clear();
     for (const auto& [v, move] : moves) {
       largest = std::max(largest, move.d.norm());
@@ -131,6 +137,7 @@ StraightBoundaries straighten_boundaries(const PolygonMesh& input, const Vertice
           if (move->second.held & (1 << k)) continue;
         }
         unknown[v] = count++;
+        free_axes[v] |= 1 << k;
       }
       if (held.isZero(0.0)) continue;
       std::vector<Eigen::Triplet<double>> entries;
@@ -208,7 +215,8 @@ StraightBoundaries straighten_boundaries(const PolygonMesh& input, const Vertice
       return high - low;
     };
     // The runs: edges by the axis they go along; short runs between two runs at one coordinate
-    // join them where the three stay within a step of a line.
+    // join them where the three stay within ten steps of a line (a loop slantwise across a
+    // chart becomes one run there, not a staircase: the larger move is opened by untangle_in_charts).
     auto plan = [&]() {
       edge_axis = first_axis;
       for (;;) {
@@ -227,7 +235,7 @@ StraightBoundaries straighten_boundaries(const PolygonMesh& input, const Vertice
             allowed &= chart_axis[(runs[r].first + j) % m] != before.axis;
           }
           const int joined = before.count + runs[r].count + after.count;
-          if (!allowed || run_length >= best_length || joined > m || spread(before.first, joined, before.axis) > h)
+          if (!allowed || run_length >= best_length || joined > m || spread(before.first, joined, before.axis) > 10.0 * h)
             continue;
           best = static_cast<int>(r);
           best_length = run_length;
@@ -275,9 +283,35 @@ StraightBoundaries straighten_boundaries(const PolygonMesh& input, const Vertice
     } catch (const Error&) {
       continue;  // a part with nothing to hold it: it stays
     }
-    if (keeps_sides(moved)) {
+    // A triangle with its three corners on one run is laid flat on its line (a sliver at the
+    // boundary: the remesh leaves it out, as the polycube's own collapsed ones).
+    std::vector<int> flattened;
+    for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
+      if (counted[t] < 0) continue;
+      const int a = counted[t] / 2;
+      for (int k : {(a + 1) % 3, (a + 2) % 3}) {
+        bool on_line = true;
+        for (int q = 0; q < 3 && on_line; ++q) {
+          const auto move = moves.find(triangles(t, q));
+          on_line = move != moves.end() && (move->second.held & (1 << k)) &&
+                    std::abs(moved(triangles(t, q), k) - moved(triangles(t, 0), k)) <= 1e-9 * h;
+        }
+        if (on_line) {
+          flattened.push_back(static_cast<int>(t));
+          break;
+        }
+      }
+    }
+    std::vector<int> labels_before;
+    for (int t : flattened) labels_before.push_back(std::exchange(counted[t], -1));
+    // A move the harmonic field turns triangles over with: the same move, the triangles
+    // opened inside their charts (the field's own coordinates free, the boundary's held).
+    if (keeps_sides(moved) || (untangle_in_charts(out.polycube, moved, triangles, counted, free_axes, 2e-3) &&
+                               keeps_sides(moved))) {
       out.polycube = moved;
       ++out.straightened;
+    } else {
+      for (size_t i = 0; i < flattened.size(); ++i) counted[flattened[i]] = labels_before[i];
     }
   }
   return out;

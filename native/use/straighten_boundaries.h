@@ -10,8 +10,10 @@
 // boundary's vertices moved onto their runs within their charts' planes. The
 // move fades into the polycube by a harmonic displacement (graph Laplacian),
 // per axis, held at zero on every plane of that axis, so the polycube stays
-// exact and its planes stay where they were; a loop whose move would turn a
-// triangle over stays as it was. A run crossing a polycube edge goes straight
+// exact and its planes stay where they were. Triangles the field turns over
+// are opened again inside their charts (untangle_in_charts); a triangle with
+// all three corners on one run is laid flat on it (the remesh leaves it out);
+// a loop whose move still turns a triangle over stays as it was. A run crossing a polycube edge goes straight
 // across it (both sides keep the same coordinate, the edge's own direction),
 // so the grid line it lies on continues on the other side.
 #pragma once
@@ -36,7 +38,7 @@ struct StraightBoundaries {
 //   surface   polycube_surface(input, polycube, ...)
 //   grid      the quantised planes of each axis (quantise_planes), in polycube units
 //   min_run   a run shorter than this (polycube units) between two runs at one coordinate joins them
-//             where the three together stay within one grid step of a line
+//             where the three together stay within ten grid steps of a line
 StraightBoundaries straighten_boundaries(const PolygonMesh& input, const Vertices& polycube,
                                          const PolycubeSurface& surface, const std::array<AxisGrid, 3>& grid,
                                          double min_run);
