@@ -4,10 +4,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include "deform/barrier_energy.h"
 #include "linear_algebra/minimize_lbfgs.h"
 
 namespace polycube {
 namespace {
+
+// Shape and area weigh the same in the barrier (deform/barrier_energy.h).
+constexpr double kShapeAgainstArea = 0.5;
 
 // A counted triangle: its corners, the two in-plane axes of its chart, the inverse of its
 // reference edge matrix and its reference area.
@@ -75,14 +79,8 @@ bool untangle_in_charts(const Vertices& reference, Vertices& positions, const Tr
     gradient.setZero(y.size());
     double total = 0.0;
     for (const Element& e : elements) {
-      const Eigen::Matrix2d j = edges(positions, e) * e.inverse;
-      const double d = j.determinant(), root = std::sqrt(eps * eps + d * d), chi = 0.5 * (d + root);
-      const double dchi = 0.5 * (1.0 + d / root), g = j.squaredNorm();
-      total += e.area * 0.5 * (g + d * d + 1.0) / chi;
-      Eigen::Matrix2d cofactor;
-      cofactor << j(1, 1), -j(1, 0), -j(0, 1), j(0, 0);
-      const Eigen::Matrix2d by_j =
-          e.area * 0.5 * ((2.0 * j + 2.0 * d * cofactor) / chi - (g + d * d + 1.0) * dchi / (chi * chi) * cofactor);
+      Eigen::Matrix2d by_j;
+      total += barrier_energy(edges(positions, e) * e.inverse, e.area, eps, kShapeAgainstArea, &by_j);
       const Eigen::Matrix2d by_edges = by_j * e.inverse.transpose();  // columns: corners 1 and 2
       const Eigen::Vector2d by_corner[3] = {-by_edges.col(0) - by_edges.col(1), by_edges.col(0), by_edges.col(1)};
       for (int q = 0; q < 3; ++q) {
