@@ -67,7 +67,8 @@ void robust_iteration(Deformation& d) {
        ++iteration) {
     d.stage = run.planes ? &result.stages.relax : exact ? &result.stages.continuous : &result.stages.fit;
     if (run.planes) {
-      if (!relax_stage(run, iteration) || !d.finish_iteration(iteration)) break;
+      // run.state is the relaxed shape's, measured by the stage's step control.
+      if (!relax_stage(run, iteration) || !d.finish_iteration(iteration, &run.state)) break;
       continue;
     }
     if (!exact) ++fit_iterations;

@@ -16,6 +16,22 @@ using Matrix = Eigen::SparseMatrix<double>;
 // replaced.
 class Simplicial : public Eigen::SimplicialLDLT<Matrix, Eigen::Lower, Eigen::AMDOrdering<int>> {
  public:
+  // Eigen's analyzePattern, the same ordering for a fifth less: its
+  // AMDOrdering first adds the transpose to the matrix, whose full symmetric
+  // form already has that pattern, sorted the same (B0's analyses 10% fewer
+  // instructions).
+  void analyze_amd(const Matrix& a) {
+    if (a.rows() == 0) return analyzePattern(a);
+    {
+      Matrix full;
+      full = a.selfadjointView<Eigen::Lower>();
+      Eigen::internal::minimum_degree_ordering(full, m_Pinv);
+    }
+    m_P = m_Pinv.inverse();
+    CholMatrixType ap(a.rows(), a.cols());
+    ap.selfadjointView<Eigen::Upper>() = a.selfadjointView<Eigen::Lower>().twistedBy(m_P);
+    analyzePattern_preordered(ap, true);
+  }
   void analyze_ordered(const Matrix& a, const SparseCholesky::Ordering& ordering) {
     m_Pinv = ordering;
     m_P = ordering.inverse();
@@ -46,7 +62,7 @@ void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& matrix, bool reu
     backends_->supernodal.reset();
   }
   backends_->simplicial = std::make_unique<Simplicial>();
-  backends_->simplicial->analyzePattern(matrix);
+  backends_->simplicial->analyze_amd(matrix);
   ordering_ = backends_->simplicial->permutationPinv();
 }
 
@@ -68,7 +84,7 @@ void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& matrix) {
     if (backends_->supernodal->factorize(matrix)) return;
     backends_->supernodal.reset();  // not positive definite: LDLT from now on
     backends_->simplicial = std::make_unique<Simplicial>();
-    backends_->simplicial->analyzePattern(matrix);
+    backends_->simplicial->analyze_amd(matrix);
   }
   backends_->simplicial->factorize(matrix);
   if (backends_->simplicial->info() != Eigen::Success)

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <Eigen/SparseCholesky>
+
 #include "linear_algebra/laplacian.h"
 #include "linear_algebra/sparse_cholesky.h"
 #include "linear_algebra/supernodal_factor.h"
@@ -81,6 +83,23 @@ TEST(SparseCholesky, AKeptOrderingGivesTheSameSolutionBitForBit) {
   natural.analyze(a, wrong_size);
   natural.factorize(a);
   EXPECT_EQ(natural.solve(b), expected);
+}
+
+// The analysis orders the full symmetric pattern directly: the same ordering
+// as Eigen's own analysis, so the same factor bit for bit.
+TEST(SparseCholesky, OrdersAsEigensOwnAnalysis) {
+  for (const PolygonMesh& mesh : {test_meshes::uv_sphere(48, 24), test_meshes::uv_sphere(7, 5)}) {
+    const SparseMatrix a = shifted_laplacian(mesh);
+    SparseCholesky ours;
+    ours.analyze(a);
+    Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>> eigen;
+    eigen.analyzePattern(a);
+    EXPECT_EQ(ours.ordering().indices(), eigen.permutationPinv().indices());
+    ours.factorize(a);
+    eigen.factorize(a);
+    const Eigen::MatrixX3d b = Eigen::MatrixX3d::Random(a.rows(), 3);
+    EXPECT_EQ(ours.solve(b), Eigen::MatrixX3d(eigen.solve(b)));
+  }
 }
 
 TEST(SparseCholesky, IndefiniteLargeSystemFallsBackToLdlt) {
