@@ -1,0 +1,35 @@
+"""`make bench`'s check lines (tests/benchmark/bench.py): a run stopped at the
+bound still says where it stands against the exact model's time."""
+import pathlib
+import sys
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "benchmark"))
+
+import bench  # noqa: E402
+
+
+def exact_row(seconds):
+    row = {"model": bench.EXACT_MODEL, "variant": "robust", "converged": True, "seconds_total": seconds}
+    return row
+
+
+def stopped_row(model, bound):
+    return bench.failed_row(model, "robust", bench.RunError(f"stopped after {bound:g} s", bound=bound))
+
+
+def test_a_bound_past_twice_the_exact_run_fails():
+    lines = bench.checks([stopped_row("fandisk x64", 480.0), exact_row(200.0)], 50)
+    line = next(line for line in lines if line.startswith("- fandisk x64"))
+    assert "> 480 s = > 2.40 x B0 x64 exact (200.0 s)" in line
+    assert line.endswith(": fails")
+
+
+def test_a_bound_within_twice_the_exact_run_is_undecided():
+    lines = bench.checks([stopped_row("armadillo x16", 480.0), exact_row(300.0)], 50)
+    line = next(line for line in lines if line.startswith("- armadillo x16"))
+    assert "> 1.60 x" in line and "undecided" in line
+
+
+def test_without_the_exact_run_a_bound_is_only_stated():
+    lines = bench.checks([stopped_row("bunny00 x16", 480.0)], 50)
+    assert lines == ["- bunny00 x16: timed out (stopped after 480 s)"]
