@@ -47,8 +47,10 @@ StraightBoundaries straighten_boundaries(const PolygonMesh& input, const Vertice
   for (int f = 0; f < faces.count(); ++f)
     for (int k = faces.offsets[f]; k < faces.offsets[f + 1]; ++k) {
       const int u = faces.indices[k], w = faces.indices[k + 1 < faces.offsets[f + 1] ? k + 1 : faces.offsets[f]];
-      if (surface.face_carries_area[f]) fixed_axes[u] |= 1 << (surface.face_label[f] / 2);
-      else pinned[u] = 1;
+      if (surface.face_carries_area[f])
+        fixed_axes[u] |= 1 << (surface.face_label[f] / 2);
+      else
+        pinned[u] = 1;
       face_of_edge[{u, w}] = f;
     }
   std::vector<int> next(n, -1), boundary_face(n, -1);
@@ -89,9 +91,8 @@ StraightBoundaries straighten_boundaries(const PolygonMesh& input, const Vertice
     if (before[t] > tiny) counted[t] = surface.face_label[surface.triangulation.face_of_triangle[t]];
   auto keeps_sides = [&](const Vertices& p) {
     for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
-      const int f = surface.triangulation.face_of_triangle[t];
       if (counted[t] < 0) continue;
-      const double after = flat_area2(p, triangles, static_cast<int>(t), surface.face_label[f]);
+      const double after = flat_area2(p, triangles, static_cast<int>(t), counted[t]);
       if (!(after > 1e-3 * before[t])) return false;
     }
     return true;
@@ -146,8 +147,10 @@ StraightBoundaries straighten_boundaries(const PolygonMesh& input, const Vertice
         if (unknown[v] < 0) continue;
         entries.emplace_back(unknown[v], unknown[v], static_cast<double>(neighbours[v].size()));
         for (int w : neighbours[v])
-          if (unknown[w] >= 0) entries.emplace_back(unknown[v], unknown[w], -1.0);
-          else rhs[unknown[v]] += held[w];
+          if (unknown[w] >= 0)
+            entries.emplace_back(unknown[v], unknown[w], -1.0);
+          else
+            rhs[unknown[v]] += held[w];
       }
       if (count > 0) {
         Eigen::SparseMatrix<double> matrix(count, count);
@@ -235,7 +238,8 @@ StraightBoundaries straighten_boundaries(const PolygonMesh& input, const Vertice
             allowed &= chart_axis[(runs[r].first + j) % m] != before.axis;
           }
           const int joined = before.count + runs[r].count + after.count;
-          if (!allowed || run_length >= best_length || joined > m || spread(before.first, joined, before.axis) > 10.0 * h)
+          if (!allowed || run_length >= best_length || joined > m ||
+              spread(before.first, joined, before.axis) > 10.0 * h)
             continue;
           best = static_cast<int>(r);
           best_length = run_length;
@@ -306,8 +310,8 @@ StraightBoundaries straighten_boundaries(const PolygonMesh& input, const Vertice
     for (int t : flattened) labels_before.push_back(std::exchange(counted[t], -1));
     // A move the harmonic field turns triangles over with: the same move, the triangles
     // opened inside their charts (the field's own coordinates free, the boundary's held).
-    if (keeps_sides(moved) || (untangle_in_charts(out.polycube, moved, triangles, counted, free_axes, 2e-3) &&
-                               keeps_sides(moved))) {
+    if (keeps_sides(moved) ||
+        (untangle_in_charts(out.polycube, moved, triangles, counted, free_axes, 2e-3) && keeps_sides(moved))) {
       out.polycube = moved;
       ++out.straightened;
     } else {

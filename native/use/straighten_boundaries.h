@@ -13,9 +13,10 @@
 // exact and its planes stay where they were. Triangles the field turns over
 // are opened again inside their charts (untangle_in_charts); a triangle with
 // all three corners on one run is laid flat on it (the remesh leaves it out);
-// a loop whose move still turns a triangle over stays as it was. A run crossing a polycube edge goes straight
-// across it (both sides keep the same coordinate, the edge's own direction),
-// so the grid line it lies on continues on the other side.
+// a loop whose move still turns a triangle over stays as it was. A run
+// crossing a polycube edge goes straight across it (both sides keep the same
+// coordinate, the edge's own direction), so the grid line it lies on
+// continues on the other side.
 #pragma once
 
 #include <array>
