@@ -227,7 +227,55 @@ int ViolationDelta::score_of(const std::vector<int>& candidate, const std::vecto
       ids.push_back(after(adjacency_.vertex_faces[k]));
     now += corner_excess(ids);
   }
-  return score_ - before + now;
+  last_score_ = score_ - before + now;
+  return last_score_;
+}
+
+void ViolationDelta::keep_last() {
+  const int s = stamp_;
+  const std::vector<int>& region = scratch_.region;
+  const std::vector<int>& new_label = scratch_.new_label;
+  const int base = charts_.count();
+  for (int c : scratch_.region_charts) {
+    faces_of_chart_[c].clear();
+    neighbours_[c].clear();
+    charts_.faces[c] = 0;
+  }
+  const int added = static_cast<int>(new_label.size());
+  charts_.label.insert(charts_.label.end(), new_label.begin(), new_label.end());
+  charts_.faces.resize(base + added, 0);
+  faces_of_chart_.resize(base + added);
+  neighbours_.resize(base + added);
+  open_side_.insert(open_side_.end(), scratch_.new_open.begin(), scratch_.new_open.end());
+  chart_stamp_.resize(base + added, 0);
+  for (size_t i = 0; i < region.size(); ++i) {
+    const int c = scratch_.new_id[i];
+    charts_.of_face[region[i]] = c;
+    faces_of_chart_[c].push_back(region[i]);
+    ++charts_.faces[c];
+  }
+  for (int c = base; c < base + added; ++c) std::sort(faces_of_chart_[c].begin(), faces_of_chart_[c].end());
+  // Unchanged charts beside the region lose the region's old charts as
+  // neighbours and gain its new ones.
+  // (Each chart beside an old one is beside a new one: the faces on their
+  // shared edges are all in the region.)
+  for (int c : scratch_.outside) {
+    std::vector<int>& n = neighbours_[c];
+    n.erase(std::remove_if(n.begin(), n.end(), [&](int d) { return d < base && chart_stamp_[d] == s; }), n.end());
+  }
+  for (std::uint64_t p : scratch_.after_pairs) {
+    const int a = static_cast<int>(p >> 32), b = static_cast<int>(p & 0xffffffffu);
+    if (a < base && b < base) continue;  // two unchanged charts: kept as they were
+    neighbours_[a].push_back(b);
+    neighbours_[b].push_back(a);
+  }
+  for (int c : scratch_.outside) {
+    std::vector<int>& n = neighbours_[c];
+    std::sort(n.begin(), n.end());
+    n.erase(std::unique(n.begin(), n.end()), n.end());
+  }
+  for (int c = base; c < base + added; ++c) std::sort(neighbours_[c].begin(), neighbours_[c].end());
+  score_ = last_score_;
 }
 
 }  // namespace polycube

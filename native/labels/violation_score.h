@@ -44,6 +44,13 @@ class ViolationDelta {
   // `candidate` equals the labels given above outside `changed` (faces that
   // may differ; listing unchanged ones too is fine).
   int score_of(const std::vector<int>& candidate, const std::vector<int>& changed);
+  // Makes the candidate of the last score_of() call this object's labels
+  // (and its score this one's), rebuilding only that call's region: a
+  // caller that keeps moves one by one (keep_valid_moves.h) then scores each
+  // against a region around that move alone, never a whole recount. The
+  // region's old charts stay as empty entries of charts(), and new ones are
+  // numbered after them.
+  void keep_last();
 
  private:
   const MeshAdjacency& adjacency_;
@@ -53,6 +60,7 @@ class ViolationDelta {
   std::vector<std::vector<int>> neighbours_;  // per chart, ascending
   std::vector<char> open_side_;
   int score_ = 0;
+  int last_score_ = 0;  // of the last score_of() call
   // Scratch, reused between calls: stamps mark membership for one call.
   int stamp_ = 0;
   std::vector<int> chart_stamp_, face_stamp_, edge_stamp_, vertex_stamp_, local_of_face_;
