@@ -14,10 +14,12 @@ std::uint64_t pair_key(int a, int b) {
 
 int missing_neighbours(size_t neighbours) { return std::max(0, 4 - static_cast<int>(neighbours)); }
 
-// Charts beyond three among `ids` (a vertex's faces' charts; reordered).
-int corner_excess(std::vector<int>& ids) {
-  std::sort(ids.begin(), ids.end());
-  const int distinct = static_cast<int>(std::unique(ids.begin(), ids.end()) - ids.begin());
+// Charts beyond three among `ids` (a vertex's faces' charts). A vertex has
+// a handful of faces: comparing each with those before it beats sorting.
+int corner_excess(const std::vector<int>& ids) {
+  int distinct = 0;
+  for (size_t i = 0; i < ids.size(); ++i)
+    if (std::find(ids.begin(), ids.begin() + i, ids[i]) == ids.begin() + i) ++distinct;
   return std::max(0, distinct - 3);
 }
 
@@ -89,6 +91,14 @@ ViolationDelta::ViolationDelta(const MeshAdjacency& adjacency, const std::vector
   local_of_face_.assign(labels.size(), -1);
   edge_stamp_.assign(adjacency.edge_count(), 0);
   vertex_stamp_.assign(adjacency.vertex_offsets.size() - 1, 0);
+  excess_at_vertex_.resize(vertex_stamp_.size());
+  std::vector<int> ids;
+  for (size_t v = 0; v < excess_at_vertex_.size(); ++v) {
+    ids.clear();
+    for (int k = adjacency.vertex_offsets[v]; k < adjacency.vertex_offsets[v + 1]; ++k)
+      ids.push_back(charts_.of_face[adjacency.vertex_faces[k]]);
+    excess_at_vertex_[v] = corner_excess(ids);
+  }
 }
 
 int ViolationDelta::score_of(const std::vector<int>& candidate, const std::vector<int>& changed) {
@@ -218,10 +228,7 @@ int ViolationDelta::score_of(const std::vector<int>& candidate, const std::vecto
   // Corners: the vertices of the region's faces.
   std::vector<int>& ids = scratch_.ids;
   for (int v : vertices) {
-    ids.clear();
-    for (int k = adjacency_.vertex_offsets[v]; k < adjacency_.vertex_offsets[v + 1]; ++k)
-      ids.push_back(charts_.of_face[adjacency_.vertex_faces[k]]);
-    before += corner_excess(ids);
+    before += excess_at_vertex_[v];
     ids.clear();
     for (int k = adjacency_.vertex_offsets[v]; k < adjacency_.vertex_offsets[v + 1]; ++k)
       ids.push_back(after(adjacency_.vertex_faces[k]));
@@ -275,6 +282,13 @@ void ViolationDelta::keep_last() {
     n.erase(std::unique(n.begin(), n.end()), n.end());
   }
   for (int c = base; c < base + added; ++c) std::sort(neighbours_[c].begin(), neighbours_[c].end());
+  for (int v : scratch_.vertices) {
+    std::vector<int>& ids = scratch_.ids;
+    ids.clear();
+    for (int k = adjacency_.vertex_offsets[v]; k < adjacency_.vertex_offsets[v + 1]; ++k)
+      ids.push_back(charts_.of_face[adjacency_.vertex_faces[k]]);
+    excess_at_vertex_[v] = corner_excess(ids);
+  }
   score_ = last_score_;
 }
 

@@ -59,6 +59,7 @@ class ViolationDelta {
   std::vector<std::vector<int>> faces_of_chart_;
   std::vector<std::vector<int>> neighbours_;  // per chart, ascending
   std::vector<char> open_side_;
+  std::vector<int> excess_at_vertex_;  // charts beyond three, per vertex, of the labels above
   int score_ = 0;
   int last_score_ = 0;  // of the last score_of() call
   // Scratch, reused between calls: stamps mark membership for one call.
