@@ -318,12 +318,21 @@ StraightBoundaries straighten_boundaries(const PolygonMesh& input, const Vertice
       }
       return moves;
     };
+    // The grid lines the loop crosses within its charts: its staircase turns at about each.
+    long crossings = 0;
+    for (int j = 0; j < m; ++j)
+      for (int k : {(chart_axis[j] + 1) % 3, (chart_axis[j] + 2) % 3})
+        crossings += std::labs(std::lround(std::floor(grid[k].to_grid(polycube(loop[(j + 1) % m], k)))) -
+                               std::lround(std::floor(grid[k].to_grid(polycube(loop[j], k)))));
     // A plan whose move cannot be opened again is tried once more with its turns split, then
-    // with ever fewer runs joined (more corners, smaller moves), before the loop stays as it was.
+    // with ever fewer runs joined (more corners, smaller moves), before the loop stays as it was;
+    // such a plan only while its runs, a corner each, stay under two thirds of the staircase's
+    // turns (pig's holes a grid square wide came out with more irregular vertices laid than not).
     for (const auto& [split_turns, join_spread] :
          {std::pair{false, 10.0}, {true, 10.0}, {true, 5.0}, {true, 2.0}, {true, 0.0}}) {
       const std::map<int, Move> moves = plan(split_turns, join_spread);
       if (moves.empty()) continue;
+      if (split_turns && 3 * static_cast<long>(runs_of().size()) >= 2 * crossings) break;
       Vertices moved;
       try {
         moved = out.polycube + displacement(moves);

@@ -18,7 +18,8 @@
 // continues on the other side; no run goes past a polycube edge along it. A
 // loop whose move still turns a triangle over is planned again, its turns
 // back within a chart split off as runs of their own and fewer runs joined
-// (more corners, smaller moves); if none works it stays as it was.
+// (more corners, smaller moves, while those stay under two thirds of the
+// turns its staircase would take); if none works it stays as it was.
 #pragma once
 
 #include <array>
