@@ -180,6 +180,7 @@ StraightBoundaries straighten_boundaries(const PolygonMesh& input, const Vertice
     if (!usable || loop.size() < 3 || next[loop.back()] != start) continue;
     const int m = static_cast<int>(loop.size());  // edge j: loop[j] -> loop[(j + 1) % m]
     std::vector<int> first_axis(m), chart_axis(m);
+    std::vector<char> crossing(m, 0);
     std::vector<double> length(m);
     for (int j = 0; j < m; ++j) {
       const int a = surface.face_label[boundary_face[loop[j]]] / 2, b = (a + 1) % 3, c = (a + 2) % 3;
@@ -191,7 +192,7 @@ StraightBoundaries straighten_boundaries(const PolygonMesh& input, const Vertice
       for (int v : {loop[j], loop[(j + 1) % m]}) {
         const int other = fixed_axes[v] & ~(1 << a);
         if ((fixed_axes[v] & (1 << a)) && other != 0 && (other & (other - 1)) == 0)
-          first_axis[j] = 3 - a - (other == 1 ? 0 : other == 2 ? 1 : 2);
+          first_axis[j] = 3 - a - (other == 1 ? 0 : other == 2 ? 1 : 2), crossing[j] = 1;
       }
       length[j] = d.norm();
     }
@@ -220,8 +221,25 @@ StraightBoundaries straighten_boundaries(const PolygonMesh& input, const Vertice
     // The runs: edges by the axis they go along; short runs between two runs at one coordinate
     // join them where the three stay within ten steps of a line (a loop slantwise across a
     // chart becomes one run there, not a staircase: the larger move is opened by untangle_in_charts).
-    auto plan = [&]() {
+    std::vector<char> locked(m, 0);
+    auto plan = [&](bool split_turns, double join_spread) {
       edge_axis = first_axis;
+      std::fill(locked.begin(), locked.end(), 0);
+      // A run that turns back within a chart (the boundary going along it and back, a hairpin)
+      // would lay both ways onto one line: split_turns makes the edge after the turn (or the one
+      // before, if that one crosses a polycube edge) go across instead, and keeps it so.
+      if (split_turns)
+        for (int j = 0; j < m; ++j) {
+          const int i = (j + m - 1) % m, a = chart_axis[j], k = first_axis[j], s = 3 - a - k;
+          if (chart_axis[i] != a || first_axis[i] != k) continue;
+          const double before_s = polycube(loop[j], s) - polycube(loop[i], s),
+                       after_s = polycube(loop[(j + 1) % m], s) - polycube(loop[j], s);
+          if (before_s * after_s >= 0.0) continue;
+          const int e = !crossing[j] ? j : !crossing[i] ? i : -1;
+          if (e < 0) continue;
+          edge_axis[e] = s;
+          locked[e] = 1;
+        }
       for (;;) {
         const std::vector<Run> runs = runs_of();
         if (runs.size() < 3) break;
@@ -235,11 +253,13 @@ StraightBoundaries straighten_boundaries(const PolygonMesh& input, const Vertice
           bool allowed = true;
           for (int j = 0; j < runs[r].count; ++j) {
             run_length += length[(runs[r].first + j) % m];
-            allowed &= chart_axis[(runs[r].first + j) % m] != before.axis;
+            allowed &= chart_axis[(runs[r].first + j) % m] != before.axis && !locked[(runs[r].first + j) % m];
           }
+          for (const Run* side : {&before, &after})  // a split turn stays a run of its own
+            for (int j = 0; j < side->count; ++j) allowed &= !locked[(side->first + j) % m];
           const int joined = before.count + runs[r].count + after.count;
           if (!allowed || run_length >= best_length || joined > m ||
-              spread(before.first, joined, before.axis) > 10.0 * h)
+              spread(before.first, joined, before.axis) > join_spread * h)
             continue;
           best = static_cast<int>(r);
           best_length = run_length;
@@ -264,10 +284,29 @@ StraightBoundaries straighten_boundaries(const PolygonMesh& input, const Vertice
         }
         const double mean = weight > 0.0 ? sum / weight : polycube(loop[run.first], k);
         long step = std::lround(grid[k].to_grid(mean));
+        // Nor past a plane of axis k that a vertex of the run neighbours (a polycube edge along
+        // the run bounds its chart there): between the nearest such ones on either side, or no plan.
+        double low = -INFINITY, high = INFINITY;  // in grid steps
+        for (int j = 0; j <= run.count; ++j) {
+          const int v = loop[(run.first + j) % m];
+          for (int w : neighbours[v]) {
+            if (!(fixed_axes[w] & (1 << k))) continue;
+            const double at = grid[k].to_grid(polycube(w, k));
+            if (polycube(w, k) <= polycube(v, k))
+              low = std::max(low, at);
+            else
+              high = std::min(high, at);
+          }
+        }
         const auto& steps = grid[k].steps;
-        const auto on = std::lower_bound(steps.begin(), steps.end(), step);
-        if (on != steps.end() && *on == step && std::abs(grid[k].planes[on - steps.begin()] - mean) > 1e-9 * h)
-          step += inward >= 0.0 ? -1 : 1;
+        auto off_planes = [&](long g) {
+          return !std::binary_search(steps.begin(), steps.end(), g) ||
+                 std::abs(grid[k].from_grid(static_cast<double>(g)) - mean) <= 1e-9 * h;
+        };
+        if (!off_planes(step)) step += inward >= 0.0 ? -1 : 1;
+        if (step <= low) step = std::lround(std::floor(low)) + 1;
+        if (step >= high) step = std::lround(std::ceil(high)) - 1;
+        if (step <= low || step >= high || !off_planes(step)) return std::map<int, Move>{};
         const double target = grid[k].from_grid(static_cast<double>(step));
         for (int j = 0; j <= run.count; ++j) {
           const int v = loop[(run.first + j) % m];
@@ -279,42 +318,56 @@ StraightBoundaries straighten_boundaries(const PolygonMesh& input, const Vertice
       }
       return moves;
     };
-    const std::map<int, Move> moves = plan();
-    if (moves.empty()) continue;
-    Vertices moved;
-    try {
-      moved = out.polycube + displacement(moves);
-    } catch (const Error&) {
-      continue;  // a part with nothing to hold it: it stays
-    }
-    // A triangle with its three corners on one run is laid flat on its line (a sliver at the
-    // boundary: the remesh leaves it out, as the polycube's own collapsed ones).
-    std::vector<int> flattened;
-    for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
-      if (counted[t] < 0) continue;
-      const int a = counted[t] / 2;
-      for (int k : {(a + 1) % 3, (a + 2) % 3}) {
-        bool on_line = true;
-        for (int q = 0; q < 3 && on_line; ++q) {
-          const auto move = moves.find(triangles(t, q));
-          on_line = move != moves.end() && (move->second.held & (1 << k)) &&
-                    std::abs(moved(triangles(t, q), k) - moved(triangles(t, 0), k)) <= 1e-9 * h;
-        }
-        if (on_line) {
-          flattened.push_back(static_cast<int>(t));
-          break;
+    // The grid lines the loop crosses within its charts: its staircase turns at about each.
+    long crossings = 0;
+    for (int j = 0; j < m; ++j)
+      for (int k : {(chart_axis[j] + 1) % 3, (chart_axis[j] + 2) % 3})
+        crossings += std::labs(std::lround(std::floor(grid[k].to_grid(polycube(loop[(j + 1) % m], k)))) -
+                               std::lround(std::floor(grid[k].to_grid(polycube(loop[j], k)))));
+    // A plan whose move cannot be opened again is tried once more with its turns split, then
+    // with ever fewer runs joined (more corners, smaller moves), before the loop stays as it was;
+    // such a plan only while its runs, a corner each, stay under two thirds of the staircase's
+    // turns (pig's holes a grid square wide came out with more irregular vertices laid than not).
+    for (const auto& [split_turns, join_spread] :
+         {std::pair{false, 10.0}, {true, 10.0}, {true, 5.0}, {true, 2.0}, {true, 0.0}}) {
+      const std::map<int, Move> moves = plan(split_turns, join_spread);
+      if (moves.empty()) continue;
+      if (split_turns && 3 * static_cast<long>(runs_of().size()) >= 2 * crossings) break;
+      Vertices moved;
+      try {
+        moved = out.polycube + displacement(moves);
+      } catch (const Error&) {
+        break;  // a part with nothing to hold it: it stays
+      }
+      // A triangle with its three corners on one run is laid flat on its line (a sliver at the
+      // boundary: the remesh leaves it out, as the polycube's own collapsed ones).
+      std::vector<int> flattened;
+      for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
+        if (counted[t] < 0) continue;
+        const int a = counted[t] / 2;
+        for (int k : {(a + 1) % 3, (a + 2) % 3}) {
+          bool on_line = true;
+          for (int q = 0; q < 3 && on_line; ++q) {
+            const auto move = moves.find(triangles(t, q));
+            on_line = move != moves.end() && (move->second.held & (1 << k)) &&
+                      std::abs(moved(triangles(t, q), k) - moved(triangles(t, 0), k)) <= 1e-9 * h;
+          }
+          if (on_line) {
+            flattened.push_back(static_cast<int>(t));
+            break;
+          }
         }
       }
-    }
-    std::vector<int> labels_before;
-    for (int t : flattened) labels_before.push_back(std::exchange(counted[t], -1));
-    // A move the harmonic field turns triangles over with: the same move, the triangles
-    // opened inside their charts (the field's own coordinates free, the boundary's held).
-    if (keeps_sides(moved) ||
-        (untangle_in_charts(out.polycube, moved, triangles, counted, free_axes, 2e-3) && keeps_sides(moved))) {
-      out.polycube = moved;
-      ++out.straightened;
-    } else {
+      std::vector<int> labels_before;
+      for (int t : flattened) labels_before.push_back(std::exchange(counted[t], -1));
+      // A move the harmonic field turns triangles over with: the same move, the triangles
+      // opened inside their charts (the field's own coordinates free, the boundary's held).
+      if (keeps_sides(moved) ||
+          (untangle_in_charts(out.polycube, moved, triangles, counted, free_axes, 2e-3) && keeps_sides(moved))) {
+        out.polycube = moved;
+        ++out.straightened;
+        break;
+      }
       for (size_t i = 0; i < flattened.size(); ++i) counted[flattened[i]] = labels_before[i];
     }
   }

@@ -12,11 +12,14 @@
 // per axis, held at zero on every plane of that axis, so the polycube stays
 // exact and its planes stay where they were. Triangles the field turns over
 // are opened again inside their charts (untangle_in_charts); a triangle with
-// all three corners on one run is laid flat on it (the remesh leaves it out);
-// a loop whose move still turns a triangle over stays as it was. A run
-// crossing a polycube edge goes straight across it (both sides keep the same
-// coordinate, the edge's own direction), so the grid line it lies on
-// continues on the other side.
+// all three corners on one run is laid flat on it (the remesh leaves it out).
+// A run crossing a polycube edge goes straight across it (both sides keep the
+// same coordinate, the edge's own direction), so the grid line it lies on
+// continues on the other side; no run goes past a polycube edge along it. A
+// loop whose move still turns a triangle over is planned again, its turns
+// back within a chart split off as runs of their own and fewer runs joined
+// (more corners, smaller moves, while those stay under two thirds of the
+// turns its staircase would take); if none works it stays as it was.
 #pragma once
 
 #include <array>

@@ -201,6 +201,8 @@ def inside_blender(argv):
             "faces": int(len(sizes)), "vertices": int(used.sum()),
             "quads": float(np.mean(sizes == 4)), "valence4": float(np.mean(regular[used])),
             "irregular": int(np.sum(used & ~regular)), "irregular_boundary": int(np.sum(used & ~regular & on_boundary)),
+            # inner vertices by valence: on a closed genus-0 quad mesh n3 - n5 - 2 n6 - ... = 8
+            "valences": {int(k): int(c) for k, c in zip(*np.unique(valence[used & ~on_boundary], return_counts=True))},
             "manifold": bool(np.all(uses <= 2) and oriented), "open_edges": int(np.sum(uses == 1)),
             "hausdorff": hausdorff((vertices, indices, sizes), reference) / diagonal,
         }
