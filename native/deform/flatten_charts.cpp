@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "deform/fitted_rotations.h"
+#include "deform/flatten_progress.h"
 #include "deform/rotated_edges_rhs.h"
 #include "mesh/triangle_incidence.h"
 
@@ -41,10 +42,6 @@ Eigen::MatrixX3d fitted_rhs(const Vertices& input, const Vertices& current, cons
 // many rings of triangles around them, doubling when a round does not reduce
 // the folds.
 constexpr int kRegionRings = 4;
-// Progress: a tenth fewer folds than the fewest so far, at least every
-// kRoundsWithoutProgress rounds.
-constexpr double kProgress = 0.9;
-constexpr int kRoundsWithoutProgress = 8;
 
 }  // namespace
 
@@ -63,7 +60,7 @@ FlatCharts flatten_charts(const Vertices& input, const Vertices& current, const 
   std::vector<char> region(n);
   int rings = kRegionRings, previous_flipped = 0;
   bool verify = false;
-  int fewest_folds = std::numeric_limits<int>::max(), last_progress = 0;
+  FlattenProgress progress(n);
   for (result.rounds = 1; result.rounds <= max_rounds; ++result.rounds) {
     // The first solve is global; after collapses, only their surroundings
     // move, widening when that does not help.
@@ -109,14 +106,8 @@ FlatCharts flatten_charts(const Vertices& input, const Vertices& current, const 
     }
     result.collapsed_area = quality.collapsed_area_fraction(result.states);
     if (result.collapsed_area > max_collapsed) return result;
-    // Collapsing what folds usually ends in a few rounds (fandisk: 11); when
-    // the folds stop getting fewer, the labels ask for more than slivers.
-    if (result.states.flipped_count < kProgress * fewest_folds) {
-      fewest_folds = result.states.flipped_count;
-      last_progress = result.rounds;
-    } else if (result.rounds - last_progress >= kRoundsWithoutProgress) {
-      return result;
-    }
+    // When the folds stop getting fewer, the labels ask for more than slivers.
+    if (progress.give_up(result.rounds, result.states.flipped_count)) return result;
     if (result.states.flipped_count == 0) {
       // A local solve is not the global one: relaxing (relax_flat_charts)
       // starts from the global solution with these collapses, which must be

@@ -15,7 +15,8 @@
 //
 // Labels can ask for more than collapsing slivers (elephant, nearest-axis or
 // automatic labels: a third of the area would collapse; bunny00: 15%): such
-// a result is refused, and the caller keeps its continuous iteration. The
+// a result is refused (also when the folds stop getting fewer:
+// flatten_progress.h), and the caller keeps its continuous iteration. The
 // staircase labels of the `eight` need 10.6%, the most of the models that
 // flatten well.
 #pragma once
