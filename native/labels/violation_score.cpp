@@ -92,13 +92,15 @@ ViolationDelta::ViolationDelta(const MeshAdjacency& adjacency, const std::vector
   edge_stamp_.assign(adjacency.edge_count(), 0);
   vertex_stamp_.assign(adjacency.vertex_offsets.size() - 1, 0);
   excess_at_vertex_.resize(vertex_stamp_.size());
-  std::vector<int> ids;
-  for (size_t v = 0; v < excess_at_vertex_.size(); ++v) {
-    ids.clear();
-    for (int k = adjacency.vertex_offsets[v]; k < adjacency.vertex_offsets[v + 1]; ++k)
-      ids.push_back(charts_.of_face[adjacency.vertex_faces[k]]);
-    excess_at_vertex_[v] = corner_excess(ids);
-  }
+  for (size_t v = 0; v < excess_at_vertex_.size(); ++v) excess_at_vertex_[v] = own_excess_at(static_cast<int>(v));
+}
+
+int ViolationDelta::own_excess_at(int v) {
+  std::vector<int>& ids = scratch_.ids;
+  ids.clear();
+  for (int k = adjacency_.vertex_offsets[v]; k < adjacency_.vertex_offsets[v + 1]; ++k)
+    ids.push_back(charts_.of_face[adjacency_.vertex_faces[k]]);
+  return corner_excess(ids);
 }
 
 int ViolationDelta::score_of(const std::vector<int>& candidate, const std::vector<int>& changed) {
@@ -266,7 +268,10 @@ void ViolationDelta::keep_last() {
   // neighbours and gain its new ones.
   // (Each chart beside an old one is beside a new one: the faces on their
   // shared edges are all in the region.)
-  for (int c : scratch_.outside) {
+  // score_of() left `outside` sorted, a chart once per new chart beside it: each once here.
+  std::vector<int>& beside = scratch_.outside;
+  beside.erase(std::unique(beside.begin(), beside.end()), beside.end());
+  for (int c : beside) {
     std::vector<int>& n = neighbours_[c];
     n.erase(std::remove_if(n.begin(), n.end(), [&](int d) { return d < base && chart_stamp_[d] == s; }), n.end());
   }
@@ -276,19 +281,9 @@ void ViolationDelta::keep_last() {
     neighbours_[a].push_back(b);
     neighbours_[b].push_back(a);
   }
-  for (int c : scratch_.outside) {
-    std::vector<int>& n = neighbours_[c];
-    std::sort(n.begin(), n.end());
-    n.erase(std::unique(n.begin(), n.end()), n.end());
-  }
+  for (int c : beside) std::sort(neighbours_[c].begin(), neighbours_[c].end());
   for (int c = base; c < base + added; ++c) std::sort(neighbours_[c].begin(), neighbours_[c].end());
-  for (int v : scratch_.vertices) {
-    std::vector<int>& ids = scratch_.ids;
-    ids.clear();
-    for (int k = adjacency_.vertex_offsets[v]; k < adjacency_.vertex_offsets[v + 1]; ++k)
-      ids.push_back(charts_.of_face[adjacency_.vertex_faces[k]]);
-    excess_at_vertex_[v] = corner_excess(ids);
-  }
+  for (int v : scratch_.vertices) excess_at_vertex_[v] = own_excess_at(v);
   score_ = last_score_;
 }
 

@@ -53,6 +53,9 @@ class ViolationDelta {
   void keep_last();
 
  private:
+  // Charts beyond three at vertex v, of this object's own labels.
+  int own_excess_at(int v);
+
   const MeshAdjacency& adjacency_;
   const std::vector<std::vector<int>>& edges_of_face_;
   Charts charts_;
