@@ -17,6 +17,9 @@ below 1e-3 of its scaled input area; this decides *good*) and per triangle
 of the solver's split of the polygons (stricter on quad meshes: a quad bent
 to a triangle's shape, one corner at 180 degrees, keeps its area, but one of
 its two triangles has none). On triangle meshes the two agree.
+The largest area ratio (a triangle's output area over its scaled input
+area) shows fins: a few small triangles stretched far out of their chart,
+which otherwise show only as a jump in the area error.
 Suzanne (and Suzanne with a level-2 subdivision surface applied) is exported
 from Blender once into build/data/.
 """
@@ -211,6 +214,9 @@ def figures(v_in, v_out, faces, labels):
         "collapsed_area_pct": 100.0 * a_in[collapsed].sum() / a_in.sum(),
         "edge_error": float(np.mean(np.abs(l_out[good] / (s * l_in[good]) - 1))),
         "area_error": float(np.mean(np.abs(a_out[in_valid] / (s2 * a_in[in_valid]) - 1))),
+        # A fin: a few small triangles stretched far out of their charts, which
+        # the other figures show only as a jump in the area error.
+        "max_area_ratio": float((a_out[in_valid] / (s2 * a_in[in_valid])).max()) if in_valid.any() else 0.0,
         "triangles": len(tri),
     }
 
@@ -293,7 +299,8 @@ COLUMNS = [("model", "{model}"), ("faces", "{faces}"), ("charts", "{charts}"), (
            ("collapsed area %", "{polygon_collapsed_area_pct:.2f}"),
            ("collapsed faces %", "{polygon_collapsed_faces_pct:.2f}"),
            ("collapsed triangles: area %", "{collapsed_area_pct:.2f}"), ("triangles %", "{collapsed_faces_pct:.2f}"),
-           ("edge err", "{edge_error:.3f}"), ("area err", "{area_error:.3f}"), ("relabelled", "{relabelled}"),
+           ("edge err", "{edge_error:.3f}"), ("area err", "{area_error:.3f}"),
+           ("max area ratio", "{max_area_ratio:.1f}"), ("relabelled", "{relabelled}"),
            ("iters", "{iterations}"), ("flat at", "{flat_at}"), ("s label", "{s_label:.1f}"),
            ("s deform", "{s_deform:.1f}"), ("MiB", "{peak_mib:.0f}")]
 
