@@ -272,7 +272,8 @@ def _print_report(package, report):
           f"mean {report['normal_deviation_mean_deg']:.4f}°")
     print(f"  flipped faces {report['flipped_faces']}  collapsed faces {report['collapsed_faces']}  "
           f"unlabelled faces {report['unlabelled_faces']}")
-    print(f"  edge error {report['edge_error']:.4f}  area error {report['area_error']:.4f}")
+    print(f"  edge error {report['edge_error']:.4f}  area error {report['area_error']:.4f}  "
+          f"largest area ratio {report.get('max_area_ratio', 0.0):.1f}")
     print(f"  shape keys {len(report['kept_iterations'])}  "
           f"seconds: read {seconds['read']:.3f}  solve {seconds['deform_call']:.3f}  "
           f"write {seconds['write']:.3f}")

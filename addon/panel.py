@@ -143,6 +143,7 @@ class VIEW3D_PT_polycube_last_run(_SubPanel, bpy.types.Panel):
             ("Collapsed faces", str(report["collapsed_faces"])),
             ("Edge error", f"{report['edge_error']:.4f}"),
             ("Area error", f"{report['area_error']:.4f}"),
+            ("Largest area ratio", f"{report.get('max_area_ratio', 0.0):.1f}"),
             ("Unlabelled", str(report["unlabelled_faces"])),
             ("Shape keys", str(len(report.get("kept_iterations", ())))),
             ("Read", f"{seconds['read']:.3f} s"),

@@ -20,8 +20,7 @@ Eigen::Vector3d doubled_normal(const Vertices& v, const Triangles& t, Eigen::Ind
 
 }  // namespace
 
-QualityMeasure::QualityMeasure(const Vertices& input, const Triangles& triangles,
-                               std::vector<int> triangle_labels)
+QualityMeasure::QualityMeasure(const Vertices& input, const Triangles& triangles, std::vector<int> triangle_labels)
     : triangles_(triangles), labels_(std::move(triangle_labels)), input_area_(triangles.rows()) {
   for (Eigen::Index f = 0; f < triangles.rows(); ++f) {
     input_area_[f] = 0.5 * doubled_normal(input, triangles, f).norm();
@@ -150,14 +149,17 @@ Figures QualityMeasure::measure(const Vertices& output, const FaceStates& s, boo
   figures.normal_deviation_max_deg = s.max_deviation_deg;
   figures.flipped_faces = s.flipped_count;
   const Eigen::Index count = triangles_.rows();
-  double weighted_deviation = 0.0, counted_area = 0.0, area_error = 0.0, collapsed_area = 0.0, nearest_max = 0.0;
+  double weighted_deviation = 0.0, counted_area = 0.0, area_error = 0.0, collapsed_area = 0.0, nearest_max = 0.0,
+         max_ratio = 0.0;
   int area_count = 0, collapsed = 0;
 #pragma omp parallel for num_threads(parallel_threads(count)) \
     reduction(+ : weighted_deviation, counted_area, area_error, area_count, collapsed, collapsed_area) \
-    reduction(max : nearest_max)
+    reduction(max : nearest_max, max_ratio)
   for (Eigen::Index f = 0; f < count; ++f) {
     if (errors && input_area_[f] > 0.0) {
-      area_error += std::abs(s.area[f] / (s.scale2 * input_area_[f]) - 1.0);
+      const double ratio = s.area[f] / (s.scale2 * input_area_[f]);
+      area_error += std::abs(ratio - 1.0);
+      max_ratio = std::max(max_ratio, ratio);
       ++area_count;
     }
     if (s.collapsed[f]) {
@@ -177,6 +179,7 @@ Figures QualityMeasure::measure(const Vertices& output, const FaceStates& s, boo
   figures.folded_edges = folded_edges(output, s.collapsed);
   figures.normal_deviation_mean_deg = counted_area > 0.0 ? weighted_deviation / counted_area : 0.0;
   figures.area_error = area_count > 0 ? area_error / area_count : 0.0;
+  figures.max_area_ratio = max_ratio;
   if (!errors) return figures;
 
   const double scale = std::sqrt(s.scale2);

@@ -10,6 +10,9 @@
 // - flipped: non-collapsed triangles with normal . axis < 0;
 // - edge error: mean over unique edges of |len_out / (s len_in) - 1|;
 // - area error: mean over triangles of |area_out / (s^2 area_in) - 1|;
+// - largest area ratio: max over triangles of area_out / (s^2 area_in): a
+//   fin (a few small triangles stretched far out of their chart) is plain
+//   to see on the polycube but moves the area error only a little;
 // - folded edges: edges between exactly two non-collapsed triangles whose
 //   unit normals are more than 120 degrees apart (dot < -0.5); a polycube
 //   has none of its own (its edges turn by 90 degrees), and it needs no
@@ -34,6 +37,7 @@ struct Figures {
   double normal_deviation_mean_deg = 0.0;
   double edge_error = 0.0;
   double area_error = 0.0;
+  double max_area_ratio = 0.0;
   int flipped_faces = 0;
   int collapsed_faces = 0;
   int folded_edges = 0;
@@ -47,8 +51,8 @@ struct FaceStates {
   std::vector<double> area;           // output area
   std::vector<double> deviation_deg;  // 0 for collapsed triangles (their normal is noise)
   std::vector<char> collapsed;
-  std::vector<char> flipped;          // non-collapsed, normal . axis < 0
-  double scale2 = 1.0;                // s^2
+  std::vector<char> flipped;  // non-collapsed, normal . axis < 0
+  double scale2 = 1.0;        // s^2
   int flipped_count = 0;
   double max_deviation_deg = 0.0;
 };

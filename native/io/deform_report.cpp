@@ -21,6 +21,7 @@ void add_figures(Json& json, const Figures& f) {
   json["normal_deviation_mean_deg"] = f.normal_deviation_mean_deg;
   json["edge_error"] = f.edge_error;
   json["area_error"] = f.area_error;
+  json["max_area_ratio"] = f.max_area_ratio;
   json["flipped_faces"] = f.flipped_faces;
   json["collapsed_faces"] = f.collapsed_faces;
   json["collapsed_area"] = f.collapsed_area;
@@ -69,8 +70,8 @@ Json deform_report(const PolygonMesh& mesh, const DeformResult& r, const DeformO
                      {"solve", r.seconds.solve},         {"measure", r.seconds.measure}};
   Json& stages = json["stages"] = Json::object();
   const std::pair<const char*, const StageCost*> stage_costs[] = {
-      {"set_up", &r.stages.set_up},     {"fit", &r.stages.fit},           {"continuous", &r.stages.continuous},
-      {"relax", &r.stages.relax},       {"flatten", &r.stages.flatten},   {"untangle", &r.stages.untangle},
+      {"set_up", &r.stages.set_up},  {"fit", &r.stages.fit},         {"continuous", &r.stages.continuous},
+      {"relax", &r.stages.relax},    {"flatten", &r.stages.flatten}, {"untangle", &r.stages.untangle},
       {"measure", &r.stages.measure}};
   for (const auto& [name, cost] : stage_costs) stages[name] = {{"count", cost->count}, {"seconds", cost->seconds}};
   stages["current_steps"] = r.stages.current_steps;

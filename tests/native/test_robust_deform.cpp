@@ -172,7 +172,25 @@ TEST(Robust, NoFlippedFaceAtAnyIterationOnB0AndTheSphere) {
     EXPECT_GT(iterations, 0);
     EXPECT_EQ(worst, 0);
     EXPECT_TRUE(r.converged);
+    EXPECT_LT(r.figures.max_area_ratio, 2.0);  // no fin: B0 1.4
   }
+}
+
+// The largest area ratio, against the scale that keeps the total area: one of
+// two equal triangles stretched to three times its area gives ratios 0.5 and
+// 1.5 (s^2 = 2), whatever the stretch's direction.
+TEST(Robust, LargestAreaRatioIsAgainstTheTotalArea) {
+  Vertices from(6, 3);
+  from << 0, 0, 0, 1, 0, 0, 0, 1, 0, 5, 5, 0, 6, 5, 0, 5, 6, 0;
+  Triangles triangles(2, 3);
+  triangles << 0, 1, 2, 3, 4, 5;
+  const QualityMeasure measure(from, triangles, {4, 4});
+  Vertices to = from;
+  to.row(5) << 5, 8, 0;  // triangle 1: three times as tall
+  const Figures figures = measure.measure(to);
+  EXPECT_DOUBLE_EQ(figures.max_area_ratio, 1.5);
+  EXPECT_DOUBLE_EQ(figures.area_error, 0.5);
+  EXPECT_EQ(measure.measure(to, false).max_area_ratio, 0.0);  // measured with the errors only
 }
 
 // The generated shapes the plain method handles: fold-free all the way, and

@@ -36,6 +36,8 @@ def test_sphere_becomes_a_cube(native, sphere):
     figures = native.figures(vertices, positions, indices, sizes, labels)
     assert figures["normal_deviation_max_deg"] == pytest.approx(report["normal_deviation_max_deg"])
     assert figures["edge_error"] == pytest.approx(report["edge_error"])
+    assert figures["max_area_ratio"] == pytest.approx(report["max_area_ratio"])
+    assert 1.0 <= figures["max_area_ratio"] < 3.0  # a sphere's cube: no fin
 
 
 def test_input_arrays_are_not_changed_and_any_dtype_is_accepted(native, sphere):
