@@ -45,7 +45,7 @@ const std::vector<std::vector<int>>& RobustRun::face_adjacency() {
 }
 
 FoldFreeStep RobustRun::controlled_step(const Vertices& target) const {
-  FoldFreeStep step = fold_free_step(d.x, state, target, d.triangles(), d.quality, kMaxHalvings);
+  FoldFreeStep step = fold_free_step(d.x, state, target, d.triangles(), d.quality, kMaxHalvings, &incidence_);
   step.positions = place_components(step.positions, step.positions, d.parts, d.centroids);
   return step;
 }

@@ -35,9 +35,9 @@ struct RobustRun {
   explicit RobustRun(Deformation& deformation);
 
   Deformation& d;
-  FaceStates state;                                // of d.x
-  double diagonal = 0.0;                           // of the input's bounding box
-  ContinuousFallback continuous;                   // the current mesh's Laplacian, when needed
+  FaceStates state;               // of d.x
+  double diagonal = 0.0;          // of the input's bounding box
+  ContinuousFallback continuous;  // the current mesh's Laplacian, when needed
   // Once flat (flatten_stage): the charts and collapses, factorised.
   std::unique_ptr<ChartPlanes> planes;
   bool relaxed = false, uncollapsed = false, untangle_tried = false;
@@ -56,6 +56,9 @@ struct RobustRun {
 
  private:
   std::vector<std::vector<int>> adjacency_;
+  // The step control's triangles around each vertex, built by the first
+  // step that folds (fold_free_step.h): once a run, not once a step.
+  mutable std::optional<TriangleIncidence> incidence_;
 };
 
 // The whole robust run on a Deformation just built with variant kRobust.
