@@ -11,6 +11,7 @@ void flatten_stage(RobustRun& run, int iteration) {
   Deformation& d = run.d;
   DeformResult& result = d.result;
   ++run.flatten_attempts;
+  run.step_incidence.reset();  // not held through the factorisations
   const StageTimer timer(result.stages.flatten, d.set_apart);
   Stopwatch clock;  // the attempt's own seconds
   run.last_attempt = iteration;
@@ -21,7 +22,8 @@ void flatten_stage(RobustRun& run, int iteration) {
   result.seconds.factorize += d.phase.lap();  // nearly all of it
   result.factorizations += flat.planes->factorizations();
   result.back_substitutions += flat.planes->solves();
-  result.flatten_attempts.push_back({iteration, flat.rounds, flat.states.flipped_count, flat.collapsed_area, flat.found});
+  result.flatten_attempts.push_back(
+      {iteration, flat.rounds, flat.states.flipped_count, flat.collapsed_area, flat.found});
   DeformResult::FlattenAttempt& attempt = result.flatten_attempts.back();
   attempt.factorizations = flat.planes->factorizations();
   if (!flat.found && flat.first_positions.size() > 0) {

@@ -14,22 +14,27 @@
 // normal points away from its label's axis.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "deform/quality.h"
+#include "mesh/triangle_incidence.h"
 
 namespace polycube {
 
 struct FoldFreeStep {
   Vertices positions;
-  FaceStates states;        // of `positions`
-  int limited = 0;          // vertices that did not go the whole way
-  std::vector<char> held;   // triangles that would have turned over
+  FaceStates states;       // of `positions`
+  int limited = 0;         // vertices that did not go the whole way
+  std::vector<char> held;  // triangles that would have turned over
 };
 
 // From `from` (whose states are `from_states`) towards `to`. Triangles turned
-// over in `from` may stay so (they are not new folds).
+// over in `from` may stay so (they are not new folds). `incidence`, when
+// given, keeps the triangles around each vertex (of `triangles`) between
+// steps: built by the first step that folds, used by the later ones.
 FoldFreeStep fold_free_step(const Vertices& from, const FaceStates& from_states, const Vertices& to,
-                            const Triangles& triangles, const QualityMeasure& measure, int max_halvings = 6);
+                            const Triangles& triangles, const QualityMeasure& measure, int max_halvings = 6,
+                            std::optional<TriangleIncidence>* incidence = nullptr);
 
 }  // namespace polycube

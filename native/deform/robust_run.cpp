@@ -45,7 +45,11 @@ const std::vector<std::vector<int>>& RobustRun::face_adjacency() {
 }
 
 FoldFreeStep RobustRun::controlled_step(const Vertices& target) const {
-  FoldFreeStep step = fold_free_step(d.x, state, target, d.triangles(), d.quality, kMaxHalvings);
+  // Kept between steps only on large meshes: on small ones a step builds
+  // its own in no time, and keeping it raised B0's peak by 1.3 MiB.
+  const bool keep = d.n >= kApproximateCurrentSolveFrom;
+  FoldFreeStep step =
+      fold_free_step(d.x, state, target, d.triangles(), d.quality, kMaxHalvings, keep ? &step_incidence : nullptr);
   step.positions = place_components(step.positions, step.positions, d.parts, d.centroids);
   return step;
 }

@@ -35,9 +35,14 @@ struct RobustRun {
   explicit RobustRun(Deformation& deformation);
 
   Deformation& d;
-  FaceStates state;                                // of d.x
-  double diagonal = 0.0;                           // of the input's bounding box
-  ContinuousFallback continuous;                   // the current mesh's Laplacian, when needed
+  FaceStates state;               // of d.x
+  double diagonal = 0.0;          // of the input's bounding box
+  ContinuousFallback continuous;  // the current mesh's Laplacian, when needed
+  // The step control's triangles around each vertex on meshes of
+  // kApproximateCurrentSolveFrom vertices or more, built by the first step
+  // that folds (fold_free_step.h): once between flattening attempts, not
+  // once a step. Freed while flattening, whose factors make the peak.
+  mutable std::optional<TriangleIncidence> step_incidence;
   // Once flat (flatten_stage): the charts and collapses, factorised.
   std::unique_ptr<ChartPlanes> planes;
   bool relaxed = false, uncollapsed = false, untangle_tried = false;

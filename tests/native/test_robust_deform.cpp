@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <fstream>
 #include <functional>
+#include <optional>
 #include <set>
 
 #include "deform/deform.h"
@@ -271,6 +272,34 @@ TEST(Robust, FoldFreeStepHoldsOnlyWhatWouldFold) {
   EXPECT_EQ(step.positions.row(3), to.row(3));
   EXPECT_DOUBLE_EQ(step.positions(2, 1), 0.25);
   EXPECT_EQ(step.limited, 3);
+}
+
+// A run's steps share the step control's triangles around each vertex: built
+// by the first step that folds (none before), and the steps that use it are
+// those without it.
+TEST(Robust, FoldFreeStepSharesItsIncidence) {
+  Vertices from(6, 3);
+  from << 0, 0, 0, 1, 0, 0, 0, 1, 0, 5, 5, 0, 6, 5, 0, 5, 6, 0;
+  Triangles triangles(2, 3);
+  triangles << 0, 1, 2, 3, 4, 5;
+  const QualityMeasure measure(from, triangles, {4, 4});
+  const FaceStates states = measure.face_states(from);
+  std::optional<TriangleIncidence> incidence;
+  Vertices stretch = from;
+  stretch.row(3) << 5, 4, 0;
+  fold_free_step(from, states, stretch, triangles, measure, 6, &incidence);
+  EXPECT_FALSE(incidence.has_value());  // nothing folded, nothing walked
+  Vertices fold = stretch;
+  fold.row(2) << 0, -2, 0;
+  for (int step = 0; step < 2; ++step) {
+    const FoldFreeStep shared = fold_free_step(from, states, fold, triangles, measure, 6, &incidence);
+    const FoldFreeStep own = fold_free_step(from, states, fold, triangles, measure, 6);
+    ASSERT_TRUE(incidence.has_value());
+    EXPECT_EQ(incidence->offsets.back(), 6);
+    EXPECT_EQ(shared.positions, own.positions);
+    EXPECT_EQ(shared.held, own.held);
+    EXPECT_EQ(shared.limited, 3);
+  }
 }
 
 // The continuous fallback solves the current mesh's Laplacian with the
