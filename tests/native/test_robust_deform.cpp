@@ -8,6 +8,7 @@
 #include <functional>
 #include <optional>
 #include <set>
+#include <utility>
 
 #include "deform/deform.h"
 #include "deform/fitted_rotations.h"
@@ -48,6 +49,16 @@ Model load(const std::string& name) {
     model.labels = nearest_labels(model.mesh);
   }
   return model;
+}
+
+// Two separate right triangles of area 1/2, both facing +Z: small enough to
+// check the step control and the figures by hand.
+std::pair<Vertices, Triangles> two_triangles() {
+  Vertices vertices(6, 3);
+  vertices << 0, 0, 0, 1, 0, 0, 0, 1, 0, 5, 5, 0, 6, 5, 0, 5, 6, 0;
+  Triangles triangles(2, 3);
+  triangles << 0, 1, 2, 3, 4, 5;
+  return {vertices, triangles};
 }
 
 DeformOptions options(Variant variant, int iterations = 200) {
@@ -181,10 +192,7 @@ TEST(Robust, NoFlippedFaceAtAnyIterationOnB0AndTheSphere) {
 // two equal triangles stretched to three times its area gives ratios 0.5 and
 // 1.5 (s^2 = 2), whatever the stretch's direction.
 TEST(Robust, LargestAreaRatioIsAgainstTheTotalArea) {
-  Vertices from(6, 3);
-  from << 0, 0, 0, 1, 0, 0, 0, 1, 0, 5, 5, 0, 6, 5, 0, 5, 6, 0;
-  Triangles triangles(2, 3);
-  triangles << 0, 1, 2, 3, 4, 5;
+  const auto [from, triangles] = two_triangles();
   const QualityMeasure measure(from, triangles, {4, 4});
   Vertices to = from;
   to.row(5) << 5, 8, 0;  // triangle 1: three times as tall
@@ -258,10 +266,7 @@ TEST(Robust, FittedRotationTurnsTheInputNormalOntoTheAxisWithTheBestTwist) {
 // The step control holds exactly the corners of the triangle a step would turn
 // over, and lets the others go the whole way.
 TEST(Robust, FoldFreeStepHoldsOnlyWhatWouldFold) {
-  Vertices from(6, 3);
-  from << 0, 0, 0, 1, 0, 0, 0, 1, 0, 5, 5, 0, 6, 5, 0, 5, 6, 0;
-  Triangles triangles(2, 3);
-  triangles << 0, 1, 2, 3, 4, 5;  // both face +Z
+  const auto [from, triangles] = two_triangles();
   const QualityMeasure measure(from, triangles, {4, 4});
   Vertices to = from;
   to.row(2) << 0, -2, 0;  // turns triangle 0 over (half way too; a quarter is fine)
@@ -278,10 +283,7 @@ TEST(Robust, FoldFreeStepHoldsOnlyWhatWouldFold) {
 // by the first step that folds (none before), and the steps that use it are
 // those without it.
 TEST(Robust, FoldFreeStepSharesItsIncidence) {
-  Vertices from(6, 3);
-  from << 0, 0, 0, 1, 0, 0, 0, 1, 0, 5, 5, 0, 6, 5, 0, 5, 6, 0;
-  Triangles triangles(2, 3);
-  triangles << 0, 1, 2, 3, 4, 5;
+  const auto [from, triangles] = two_triangles();
   const QualityMeasure measure(from, triangles, {4, 4});
   const FaceStates states = measure.face_states(from);
   std::optional<TriangleIncidence> incidence;
