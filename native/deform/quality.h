@@ -73,9 +73,9 @@ class QualityMeasure {
   // the step control's line search needs per trial, at a fraction of
   // face_states' cost (no angles).
   bool folds_beyond(const Vertices& output, const std::vector<char>& before) const;
-  // Without `errors`, the edge and area error means are left at 0: the
-  // stopping rule needs only the normal figures, and the edge pass is the
-  // costliest part.
+  // Without `errors`, the edge and area error means and the largest area
+  // ratio are left at 0: the stopping rule needs only the normal figures,
+  // and the edge pass is the costliest part.
   Figures measure(const Vertices& output, bool errors = true) const;
   // The same from `states` = face_states(output), already measured.
   Figures measure(const Vertices& output, const FaceStates& states, bool errors = true) const;

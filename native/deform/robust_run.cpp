@@ -44,7 +44,7 @@ const std::vector<std::vector<int>>& RobustRun::face_adjacency() {
   return adjacency_;
 }
 
-FoldFreeStep RobustRun::controlled_step(const Vertices& target) const {
+FoldFreeStep RobustRun::controlled_step(const Vertices& target) {
   // Kept between steps only on large meshes: on small ones a step builds
   // its own in no time, and keeping it raised B0's peak by 1.3 MiB.
   const bool keep = d.n >= kApproximateCurrentSolveFrom;

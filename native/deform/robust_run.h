@@ -42,7 +42,7 @@ struct RobustRun {
   // kApproximateCurrentSolveFrom vertices or more, built by the first step
   // that folds (fold_free_step.h): once between flattening attempts, not
   // once a step. Freed while flattening, whose factors make the peak.
-  mutable std::optional<TriangleIncidence> step_incidence;
+  std::optional<TriangleIncidence> step_incidence;
   // Once flat (flatten_stage): the charts and collapses, factorised.
   std::unique_ptr<ChartPlanes> planes;
   bool relaxed = false, uncollapsed = false, untangle_tried = false;
@@ -53,7 +53,7 @@ struct RobustRun {
   const std::vector<std::vector<int>>& face_adjacency();
   // A fold-free step towards `target` (fold_free_step.h), put back on the
   // components' centroids, which per-vertex steps move a little.
-  FoldFreeStep controlled_step(const Vertices& target) const;
+  FoldFreeStep controlled_step(const Vertices& target);
   // The charts of the current labels without collapses, sharing the factors
   // of `same_charts` (of the same labels) it can, and factorising the others
   // with their orderings (ChartPlanes::use_chart_factors).

@@ -32,7 +32,7 @@ Orientation orientation(const PolygonMesh& input, const std::vector<int>* labels
   // they walk it opposite ways. A contradiction means no winding works.
   // Each face's links (neighbour, same direction) in edge order, in one
   // array: a list per face cost B0 20,000 allocations, a quarter of this
-  // check's time (docs/design.md section 6).
+  // check's time (docs/design.md section 2.6, "Cost").
   std::vector<int> link_offsets(face_count + 1, 0);
   std::vector<std::pair<int, bool>> links;
   std::vector<char> open_edge(face_count, 0);
