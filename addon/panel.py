@@ -157,6 +157,8 @@ class VIEW3D_PT_polycube_last_run(_SubPanel, bpy.types.Panel):
             rows += (("Relabelled", str(report["relabelled_faces_count"])),)
         if report.get("flat_iteration"):
             rows += (("Flat from", f"iteration {report['flat_iteration']}"),)
+        if report.get("polish_steps"):
+            rows += (("Polished", f"{report['polish_steps']} steps"),)
         if report.get("last_resort"):
             # docs/design.md section 2.6, stage 9: the labels flattened only
             # by collapsing more than a first run accepts.

@@ -7,16 +7,16 @@
 #include "cli/arguments.h"
 #include "cli/commands.h"
 #include "cli/flush_stdout.h"
-#include "cli/peak_memory.h"
 #include "cli/label_source.h"
-#include "labeller/auto_labels.h"
+#include "cli/peak_memory.h"
 #include "deform/deform.h"
-#include "labels/nearest_labels.h"
 #include "io/deform_report.h"
 #include "io/labels_io.h"
 #include "io/output_files.h"
 #include "io/read_mesh.h"
 #include "io/write_mesh.h"
+#include "labeller/auto_labels.h"
+#include "labels/nearest_labels.h"
 
 namespace polycube {
 
@@ -49,13 +49,15 @@ int deform_command(const std::vector<std::string>& args) {
                  "fixed: the paper's method, Laplacian of the input, factorised once;\n"
                  "current: the paper's method, Laplacian rebuilt every iteration, as in the paper")
       ->type_name("robust|fixed|current");
-  app.add_option("--start", start, "a mesh with the same vertices and faces to start from\n"
-                                   "(`polycube label --straightened`)")
+  app.add_option("--start", start,
+                 "a mesh with the same vertices and faces to start from\n"
+                 "(`polycube label --straightened`)")
       ->type_name("SHAPE");
   app.add_option("--output", output, "the deformed mesh, .obj, .off or .ply (same vertices and faces)")
       ->type_name("OUT");
-  app.add_option("--output-labels", output_labels, "the labels the run ended with (the given ones, and any the\n"
-                                                   "solver changed)")
+  app.add_option("--output-labels", output_labels,
+                 "the labels the run ended with (the given ones, and any the\n"
+                 "solver changed)")
       ->type_name("LABELS.txt");
   bool plain = false;
   add_plain_labels_option(app, plain);
@@ -68,6 +70,10 @@ int deform_command(const std::vector<std::string>& args) {
   app.add_flag("--no-last-resort", first_run_only,
                "robust: return the best state of a run that does not become an exact polycube; by default\n"
                "it is run once more, flattening accepted up to half the area collapsed (last_resort says so)");
+  bool unpolished = false;
+  app.add_flag("--no-polish", unpolished,
+               "robust: return an exact result as the run left it; by default its edge and area errors are\n"
+               "lowered inside its flat charts, as one more iteration (polish_steps)");
   app.add_flag("--time-references", options.time_references,
                "also time one back-substitution and one measurement of this mesh\n"
                "(reference_seconds: what `make bench` states an iteration's cost against)");
@@ -75,6 +81,7 @@ int deform_command(const std::vector<std::string>& args) {
   options.variant = parse_variant(variant);
   options.relabel_collapsed = !keep_collapsed;
   options.last_resort = !first_run_only;
+  options.polish = !unpolished;
 
   const PolygonMesh mesh = read_mesh(input);
   if (app.count("--start")) {
@@ -103,7 +110,8 @@ int deform_command(const std::vector<std::string>& args) {
   const std::string report = json_text(json);
   OutputFiles outputs;
   if (app.count("--output")) outputs.stage(output, mesh_file_writer(output, result.positions, mesh.faces));
-  if (app.count("--output-labels")) outputs.stage(output_labels, labels_file_text(output_labels, result.labels, labels_header(plain)));
+  if (app.count("--output-labels"))
+    outputs.stage(output_labels, labels_file_text(output_labels, result.labels, labels_header(plain)));
   if (app.count("--report")) outputs.stage(report_path, report + "\n");
   print_line(report);
   flush_stdout();

@@ -23,8 +23,8 @@
 #include <memory>
 #include <vector>
 
-#include "mesh/mesh.h"
 #include "linear_algebra/sparse_cholesky.h"
+#include "mesh/mesh.h"
 #include "mesh/union_find.h"
 
 namespace polycube {
@@ -67,14 +67,17 @@ class ChartPlanes {
   // Minimises x^T L x / 2 - b^T x over the positions with flat charts; `rhs`
   // is the n x 3 b. Uses the charts and collapses of the last factorize().
   Vertices solve(const Eigen::MatrixX3d& rhs) const;
+  // Per vertex, its unknown of coordinate `axis` as of the last factorize():
+  // vertices that share one move together, or the charts stop being flat.
+  const std::vector<int>& unknowns(int axis) const { return unknown_[axis]; }
 
  private:
   int root(int axis, int v) const;
   void join(int axis, int a, int b);
 
   Triangles triangles_;
-  mutable std::array<UnionFind, 3> sets_;  // per axis: vertices sharing that coordinate
-  std::array<std::vector<int>, 3> unknown_;         // per axis and vertex: its unknown
+  mutable std::array<UnionFind, 3> sets_;    // per axis: vertices sharing that coordinate
+  std::array<std::vector<int>, 3> unknown_;  // per axis and vertex: its unknown
   std::array<std::shared_ptr<const SparseCholesky>, 3> cholesky_;
   std::array<bool, 3> changed_ = {true, true, true};
   // Per axis: nothing collapsed since the construction (the charts alone),

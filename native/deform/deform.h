@@ -93,6 +93,10 @@ struct DeformOptions {
   // more with that share raised to one half, and kept when it is exact
   // (docs/design.md section 2.6, stage 9); false keeps the first run.
   bool last_resort = true;
+  // Robust variant: an exact result's edge and area errors are lowered last
+  // inside its flat charts (polish_stage.h, docs/design.md section 2.6,
+  // stage 10), as one more iteration when the limit leaves room for it.
+  bool polish = true;
   // Polled after every iteration of those further runs, which the callback
   // does not see: returning true stops them, keeping the run before (Esc in
   // Blender). The callback stops the first run.
@@ -109,15 +113,16 @@ struct PhaseSeconds {
 // the input's Laplacian), fitting, the continuous fallback, relaxing flat
 // charts (each an iteration's own time), the attempts at flattening, the
 // untangling of flat shapes (untangle_step.h, within a flattening attempt or
-// a relaxing iteration) and the measurement of every iteration. What is
-// left of `seconds.total` is the result's own measurement (conclude). The
-// other variants count every iteration as continuous.
+// a relaxing iteration), the measurement of every iteration and the polish
+// of the result (polish_stage.h: one call, an iteration when it keeps a
+// step). What is left of `seconds.total` is the result's own measurement
+// (conclude). The other variants count every iteration as continuous.
 struct StageCost {
   int count = 0;  // iterations, or calls for `flatten` and `untangle`
   double seconds = 0.0;
 };
 struct StageSeconds {
-  StageCost set_up, fit, continuous, relax, flatten, untangle, measure;
+  StageCost set_up, fit, continuous, relax, flatten, untangle, measure, polish;
   int current_steps = 0;  // continuous steps that needed the current mesh's Laplacian
 };
 
@@ -164,6 +169,9 @@ struct DeformResult {
   // Whether collapsed or turned-over triangles of a flat result were opened
   // inside their charts (untangle_flat_charts.h) in the result returned.
   bool untangled = false;
+  // Steps of the polish (DeformOptions::polish) kept; when more than 0 it
+  // counts as one iteration in `iterations`, the last.
+  int polish_steps = 0;
   // Every attempt at flattening, kept or refused: why a run did not become
   // exact (too much area collapsed, or folds left after every round).
   struct FlattenAttempt {

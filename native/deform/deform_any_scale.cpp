@@ -8,8 +8,11 @@
 #include <utility>
 
 #include "deform/deform.h"
+#include "deform/deformation.h"
+#include "deform/polish_stage.h"
 #include "deform/quality.h"
 #include "deform/relabel_collapsed_faces.h"
+#include "deform/robust_run.h"
 #include "labels/axis.h"
 #include "labels/keep_valid_moves.h"
 #include "labels/label_energy.h"
@@ -83,7 +86,8 @@ void add_cost(DeformResult& into, const DeformResult& from) {
                       {&a.relax, &b.relax},
                       {&a.flatten, &b.flatten},
                       {&a.untangle, &b.untangle},
-                      {&a.measure, &b.measure}}) {
+                      {&a.measure, &b.measure},
+                      {&a.polish, &b.polish}}) {
     x->count += y->count;
     x->seconds += y->seconds;
   }
@@ -105,6 +109,19 @@ DeformResult silent_run(const PolygonMesh& mesh, const std::vector<int>& labels,
   return run;
 }
 
+// The figures of `positions` against the labels the caller gave, unlabelled
+// faces taking their nearest axis.
+Figures given_labels_figures(const PolygonMesh& mesh, const Triangulation& triangulation,
+                             const std::vector<int>& labels, const Vertices& positions) {
+  std::vector<int> given = labels;
+  const std::vector<int> nearest = nearest_labels(mesh);
+  for (size_t f = 0; f < given.size(); ++f)
+    if (given[f] == kUnlabelled) given[f] = nearest[f];
+  std::vector<int> triangle_labels(triangulation.face_of_triangle.size());
+  for (size_t t = 0; t < triangle_labels.size(); ++t) triangle_labels[t] = given[triangulation.face_of_triangle[t]];
+  return QualityMeasure(mesh.vertices, triangulation.triangles, triangle_labels).measure(positions);
+}
+
 // `again` (a silent run) replaces `result`: to the caller it is one more
 // iteration, seen once by the callback, its own iterations counted in
 // `second_run_iterations`; its figures against the labels the caller gave.
@@ -112,14 +129,7 @@ void keep_as_next_iteration(const PolygonMesh& mesh, const Triangulation& triang
                             const IterationCallback& callback, DeformResult again, DeformResult& result) {
   const int offset = result.iterations;
   add_cost(again, result);
-  std::vector<int> given = labels;
-  const std::vector<int> nearest = nearest_labels(mesh);
-  for (size_t f = 0; f < given.size(); ++f)
-    if (given[f] == kUnlabelled) given[f] = nearest[f];
-  std::vector<int> triangle_labels(triangulation.face_of_triangle.size());
-  for (size_t t = 0; t < triangle_labels.size(); ++t) triangle_labels[t] = given[triangulation.face_of_triangle[t]];
-  again.given_labels_figures =
-      QualityMeasure(mesh.vertices, triangulation.triangles, triangle_labels).measure(again.positions);
+  again.given_labels_figures = given_labels_figures(mesh, triangulation, labels, again.positions);
   again.second_run_iterations = result.second_run_iterations + again.iterations;
   again.iterations = again.kept_iteration = offset + 1;
   if (again.flat_iteration > 0) again.flat_iteration = offset + 1;
@@ -224,6 +234,40 @@ bool refused_for_collapse(const DeformResult& run, const DeformOptions& options)
                      });
 }
 
+// The polish (polish_stage.h) of an exact result, on the labels it ended
+// with: when it keeps a step, one more iteration to the callback.
+void polish(const PolygonMesh& mesh, const std::vector<int>& labels, const DeformOptions& options,
+            const IterationCallback& callback, DeformResult& result) {
+  Stopwatch clock;
+  DeformOptions from_result = options;
+  from_result.start = result.positions;
+  const IterationCallback none;
+  Deformation d(mesh, result.labels, from_result, none);
+  RobustRun run(d);
+  const int steps = polish_stage(run);
+  result.factorizations += d.result.factorizations;
+  result.back_substitutions += d.result.back_substitutions;
+  StageSeconds& stages = result.stages;
+  ++stages.polish.count;
+  const double polish_seconds = clock.lap();
+  stages.polish.seconds += polish_seconds;
+  double measure_seconds = 0.0;
+  if (steps > 0) {
+    result.polish_steps = steps;
+    result.positions = std::move(d.x);
+    result.figures = d.quality.measure(result.positions, run.state);
+    result.given_labels_figures = result.relabelled_faces.empty()
+                                      ? result.figures
+                                      : given_labels_figures(mesh, d.triangulation, labels, result.positions);
+    result.iterations = result.kept_iteration = result.iterations + 1;
+    ++stages.measure.count;
+    measure_seconds = clock.lap();
+    stages.measure.seconds += measure_seconds;
+  }
+  result.seconds.total += polish_seconds + measure_seconds;
+  if (steps > 0 && callback) callback(result.iterations, result.positions, result.figures);
+}
+
 }  // namespace
 
 DeformResult deform(const PolygonMesh& input, const std::vector<int>& labels, const DeformOptions& options,
@@ -268,6 +312,10 @@ DeformResult deform(const PolygonMesh& input, const std::vector<int>& labels, co
         break;
     }
   }
+  // The polish is one more iteration: within the limit, like the others.
+  if (robust && options.polish && result.converged && !result.stopped && result.figures.flipped_faces == 0 &&
+      result.iterations < options.iterations && !(options.stop_requested && options.stop_requested()))
+    polish(mesh, labels, unit_options, unit_callback, result);
   result.positions = unit.box().from_unit(result.positions, mesh.vertices, input.vertices);
   // The report never contradicts itself: a run that leaves faces above the
   // tolerance or folded is not converged, whatever the figures' rounding said.

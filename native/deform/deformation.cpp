@@ -63,7 +63,11 @@ Deformation::Deformation(const PolygonMesh& mesh, const std::vector<int>& labels
     result.figures = quality.measure(x, false);
     result.converged = converged(result.figures, options.tolerance_deg, triangles().rows());
   }
-  factorization.analyze(laplacian.matrix(), options.variant == Variant::kCurrent);
+  // A robust run from a start that is already a polycube (the polish's,
+  // polish_stage.h) never solves with the input's Laplacian: its ordering
+  // would be computed for nothing.
+  if (!(options.variant == Variant::kRobust && result.converged))
+    factorization.analyze(laplacian.matrix(), options.variant == Variant::kCurrent);
   stage = &result.stages.continuous;
 }
 
@@ -165,8 +169,7 @@ DeformResult Deformation::conclude() {
   result.converged = converged(result.figures, options.tolerance_deg, triangles().rows());
   if (!result.relabelled_faces.empty()) {
     // Against the labels the caller gave (unlabelled faces: nearest axis).
-    result.given_labels_figures =
-        QualityMeasure(mesh.vertices, triangles(), per_triangle(filled_labels)).measure(x);
+    result.given_labels_figures = QualityMeasure(mesh.vertices, triangles(), per_triangle(filled_labels)).measure(x);
   } else {
     result.given_labels_figures = result.figures;
   }

@@ -118,7 +118,8 @@ void QualityMeasure::update_face_state(const Vertices& output, Eigen::Index f, F
   s.flipped[f] = unit.dot(axis) < 0.0;
 }
 
-bool QualityMeasure::folds_beyond(const Vertices& output, const std::vector<char>& before) const {
+double QualityMeasure::fold_flags(const Vertices& output, std::vector<char>& collapsed, std::vector<char>& flipped,
+                                  std::vector<double>* areas) const {
   const Eigen::Index count = triangles_.rows();
   const int threads = parallel_threads(count);
   std::vector<double> area(count), along(count);  // along: doubled normal . label axis
@@ -131,13 +132,23 @@ bool QualityMeasure::folds_beyond(const Vertices& output, const std::vector<char
     total += area[f];
   }
   const double scale2 = input_total_ > 0.0 && total > 0.0 ? total / input_total_ : 1.0;
-  int folds = 0;
-#pragma omp parallel for num_threads(threads) reduction(+ : folds)
+  collapsed.resize(count);
+  flipped.resize(count);
+#pragma omp parallel for num_threads(threads)
   for (Eigen::Index f = 0; f < count; ++f) {
-    const bool collapsed = area[f] <= kCollapsedAreaRatio * scale2 * input_area_[f] || area[f] == 0.0;
-    folds += !before[f] && !collapsed && along[f] < 0.0;
+    collapsed[f] = area[f] <= kCollapsedAreaRatio * scale2 * input_area_[f] || area[f] == 0.0;
+    flipped[f] = !collapsed[f] && along[f] < 0.0;
   }
-  return folds > 0;
+  if (areas) *areas = std::move(area);
+  return scale2;
+}
+
+bool QualityMeasure::folds_beyond(const Vertices& output, const std::vector<char>& before) const {
+  std::vector<char> collapsed, flipped;
+  fold_flags(output, collapsed, flipped);
+  for (size_t f = 0; f < flipped.size(); ++f)
+    if (flipped[f] && !before[f]) return true;
+  return false;
 }
 
 Figures QualityMeasure::measure(const Vertices& output, bool errors) const {

@@ -73,6 +73,11 @@ class QualityMeasure {
   // the step control's line search needs per trial, at a fraction of
   // face_states' cost (no angles).
   bool folds_beyond(const Vertices& output, const std::vector<char>& before) const;
+  // FaceStates' `collapsed` and `flipped` alone (the same definitions), at
+  // a fraction of face_states' cost: what a step control needs per trial;
+  // with `areas`, each triangle's area too. Returns the scale s^2.
+  double fold_flags(const Vertices& output, std::vector<char>& collapsed, std::vector<char>& flipped,
+                    std::vector<double>* areas = nullptr) const;
   // Without `errors`, the edge and area error means and the largest area
   // ratio are left at 0: the stopping rule needs only the normal figures,
   // and the edge pass is the costliest part.
@@ -86,6 +91,14 @@ class QualityMeasure {
   // The input's folded edges (no triangle of the input counts as collapsed
   // unless it has zero area): what no output may exceed.
   int input_folded_edges() const { return input_folded_edges_; }
+
+  // What the edge and area errors are measured against: the mesh's edges
+  // (vertex pairs, each once), their input lengths, the triangles' input
+  // areas and the input's total area.
+  const std::vector<std::pair<int, int>>& edges() const { return edges_; }
+  const std::vector<double>& input_lengths() const { return input_lengths_; }
+  const std::vector<double>& input_areas() const { return input_area_; }
+  double input_total_area() const { return input_total_; }
 
   // Labels changed by a repair: the input's measurements stay.
   void set_labels(std::vector<int> triangle_labels) { labels_ = std::move(triangle_labels); }

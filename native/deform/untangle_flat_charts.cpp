@@ -27,7 +27,7 @@ constexpr double kFirstEps = 0.1;
 constexpr double kMinEpsDecrease = 0.3;
 constexpr int kIterationsPerRound = 300;
 // L-BFGS's iterations in a round that starts untangled (every triangle with
-// room: the polish after local rounds, header). It starts near its minimum,
+// room: the finishing round after local rounds, header). It starts near its minimum,
 // and the iterations past these lower the edge error by about 1% at the
 // cost of a round over the whole mesh (diplodocus: 1.4 s each, two or three
 // per untangling, eight untanglings; deformation 42 -> 22 s, collapsed area
@@ -462,7 +462,7 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
     result.untangled = no_room.empty();
     if (no_room.empty()) {
       // The last round is global: the map away from the triangles that
-      // were without room is polished as before.
+      // were without room is minimised as before.
       if (!local && (eps < 1e-4 || 1.0 - reached / previous_value < kSettled)) break;
     } else if (result.rounds > 1 && no_room.size() > kStalled * previous_no_room) {
       // Stalled without area: no room in the charts.

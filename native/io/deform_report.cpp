@@ -44,6 +44,7 @@ Json deform_report(const PolygonMesh& mesh, const DeformResult& r, const DeformO
                {"flat_iteration", r.flat_iteration},
                {"second_run_iterations", r.second_run_iterations},
                {"last_resort", r.last_resort},
+               {"polish_steps", r.polish_steps},
                {"collapsed_on_purpose", r.collapsed_on_purpose},
                {"unlabelled_faces", r.unlabelled_faces},
                {"solver", r.solver},
@@ -70,9 +71,9 @@ Json deform_report(const PolygonMesh& mesh, const DeformResult& r, const DeformO
                      {"solve", r.seconds.solve},         {"measure", r.seconds.measure}};
   Json& stages = json["stages"] = Json::object();
   const std::pair<const char*, const StageCost*> stage_costs[] = {
-      {"set_up", &r.stages.set_up},  {"fit", &r.stages.fit},         {"continuous", &r.stages.continuous},
-      {"relax", &r.stages.relax},    {"flatten", &r.stages.flatten}, {"untangle", &r.stages.untangle},
-      {"measure", &r.stages.measure}};
+      {"set_up", &r.stages.set_up},   {"fit", &r.stages.fit},         {"continuous", &r.stages.continuous},
+      {"relax", &r.stages.relax},     {"flatten", &r.stages.flatten}, {"untangle", &r.stages.untangle},
+      {"measure", &r.stages.measure}, {"polish", &r.stages.polish}};
   for (const auto& [name, cost] : stage_costs) stages[name] = {{"count", cost->count}, {"seconds", cost->seconds}};
   stages["current_steps"] = r.stages.current_steps;
   if (options.time_references)

@@ -15,22 +15,22 @@
 #include <cstring>
 #include <type_traits>
 
-#include "labeller/auto_labels.h"
-#include "labels/axis.h"
-#include "mesh/check_input.h"
 #include "deform/deform.h"
-#include "labels/nearest_labels.h"
-#include "labels/orientation.h"
 #include "deform/quality.h"
-#include "refine/refine.h"
-#include "mesh/triangulate.h"
-#include "mesh/unit_box.h"
-#include "labels/validate_labels.h"
-#include "linear_algebra/supernodal_factor.h"
 #include "io/deform_report.h"
 #include "io/labels_io.h"
 #include "io/labels_report.h"
 #include "io/read_mesh.h"
+#include "labeller/auto_labels.h"
+#include "labels/axis.h"
+#include "labels/nearest_labels.h"
+#include "labels/orientation.h"
+#include "labels/validate_labels.h"
+#include "linear_algebra/supernodal_factor.h"
+#include "mesh/check_input.h"
+#include "mesh/triangulate.h"
+#include "mesh/unit_box.h"
+#include "refine/refine.h"
 #include "use/polycube_uv.h"
 #include "use/quad_remesh.h"
 #include "use/uv_figures.h"
@@ -47,8 +47,8 @@ using IntArray = py::object;
 Vertices to_vertices(const DoubleArray& array, const char* name) {
   if (array.ndim() != 2 || array.shape(1) != 3)
     throw py::value_error(std::string(name) + " must be an (n, 3) array, got shape " +
-                          std::string(py::str(py::tuple(py::cast(std::vector<py::ssize_t>(
-                              array.shape(), array.shape() + array.ndim()))))));
+                          std::string(py::str(py::tuple(
+                              py::cast(std::vector<py::ssize_t>(array.shape(), array.shape() + array.ndim()))))));
   Vertices v(array.shape(0), 3);
   if (array.size() > 0) std::memcpy(v.data(), array.data(), sizeof(double) * array.size());
   return v;
@@ -77,8 +77,8 @@ std::vector<int> checked_ints(const py::array& array, const char* name, long lon
   return out;
 }
 
-std::vector<int> to_ints(const IntArray& object, const char* name, long long low = INT_MIN,
-                         long long high = INT_MAX, const std::string& meaning = "the int32 range") {
+std::vector<int> to_ints(const IntArray& object, const char* name, long long low = INT_MIN, long long high = INT_MAX,
+                         const std::string& meaning = "the int32 range") {
   const py::array array = py::array::ensure(object);
   if (!array) throw py::type_error(std::string(name) + " must be an array of integers");
   if (array.ndim() != 1) throw py::value_error(std::string(name) + " must be a flat (1-D) array");
@@ -86,8 +86,7 @@ std::vector<int> to_ints(const IntArray& object, const char* name, long long low
   const char kind = array.dtype().kind();
   if (kind == 'i') return checked_ints<long long>(array, name, low, high, meaning);
   if (kind == 'u') return checked_ints<unsigned long long>(array, name, low, high, meaning);
-  throw py::type_error(std::string(name) + " must hold integers, got dtype " +
-                       std::string(py::str(array.dtype())) +
+  throw py::type_error(std::string(name) + " must hold integers, got dtype " + std::string(py::str(array.dtype())) +
                        (kind == 'f' ? " (convert deliberately, e.g. np.rint(a).astype(np.int32))" : ""));
 }
 
@@ -140,7 +139,7 @@ py::dict figures_dict(const Figures& figures) {
 
 py::dict deform_py(const DoubleArray& vertices, const IntArray& face_indices, const IntArray& face_sizes,
                    const IntArray& labels, int iterations, double tolerance, const std::string& variant,
-                   bool relabel_collapsed, bool last_resort, const std::optional<py::function>& callback,
+                   bool relabel_collapsed, bool last_resort, bool polish, const std::optional<py::function>& callback,
                    const std::optional<py::function>& stop) {
   PolygonMesh mesh = to_mesh(vertices, face_indices, face_sizes);
   const std::vector<int> face_labels = to_labels(labels);
@@ -150,6 +149,7 @@ py::dict deform_py(const DoubleArray& vertices, const IntArray& face_indices, co
   options.variant = parse_variant(variant);
   options.relabel_collapsed = relabel_collapsed;
   options.last_resort = last_resort;
+  options.polish = polish;
 
   if (stop)
     options.stop_requested = [&stop]() {
@@ -201,11 +201,12 @@ py::dict figures_py(const DoubleArray& input, const DoubleArray& output, const I
   const PolygonMesh given = to_mesh(input, face_indices, face_sizes);
   const Vertices given_out = to_vertices(output, "output_vertices");
   if (given_out.rows() != given.vertices.rows())
-    throw py::value_error("output_vertices has " + std::to_string(given_out.rows()) +
-                          " rows but input_vertices has " + std::to_string(given.vertices.rows()));
+    throw py::value_error("output_vertices has " + std::to_string(given_out.rows()) + " rows but input_vertices has " +
+                          std::to_string(given.vertices.rows()));
   for (Eigen::Index v = 0; v < given_out.rows(); ++v)
     if (!given_out.row(v).allFinite())
-      throw py::value_error("output_vertices[" + std::to_string(v) + "] is not finite: a NaN or infinite "
+      throw py::value_error("output_vertices[" + std::to_string(v) +
+                            "] is not finite: a NaN or infinite "
                             "position has no figures");
   std::vector<int> face_labels = to_labels(labels);
   check_input(given, &face_labels);
@@ -314,8 +315,8 @@ Vertices polycube_positions(const DoubleArray& polycube, const PolygonMesh& mesh
 }
 
 py::dict polycube_uv_py(const DoubleArray& vertices, const IntArray& face_indices, const IntArray& face_sizes,
-                        const DoubleArray& polycube, const std::optional<IntArray>& labels, bool pack,
-                        double padding, bool relax, double merge) {
+                        const DoubleArray& polycube, const std::optional<IntArray>& labels, bool pack, double padding,
+                        bool relax, double merge) {
   const PolygonMesh mesh = to_mesh(vertices, face_indices, face_sizes);
   const Vertices positions = polycube_positions(polycube, mesh);
   const std::vector<int> face_labels = labels ? to_ints(*labels, "labels") : std::vector<int>{};
@@ -407,12 +408,12 @@ PYBIND11_MODULE(polycube_native, m) {
   m.attr("DEFAULT_DETAIL") = 0.5;
   m.attr("MAX_REFINE_LEVELS") = kMaxRefineLevels;
 
-  m.def("deform", &deform_py, py::arg("vertices"), py::arg("face_indices"), py::arg("face_sizes"),
-        py::arg("labels"), py::kw_only(), py::arg("iterations") = 100, py::arg("tolerance") = 0.5,
+  m.def("deform", &deform_py, py::arg("vertices"), py::arg("face_indices"), py::arg("face_sizes"), py::arg("labels"),
+        py::kw_only(), py::arg("iterations") = 100, py::arg("tolerance") = 0.5,
         py::arg("variant") = variant_name(DeformOptions{}.variant),
         py::arg("relabel_collapsed") = DeformOptions{}.relabel_collapsed,
-        py::arg("last_resort") = DeformOptions{}.last_resort, py::arg("callback") = py::none(),
-        py::arg("stop") = py::none(), R"(Deform a mesh towards its polycube.
+        py::arg("last_resort") = DeformOptions{}.last_resort, py::arg("polish") = DeformOptions{}.polish,
+        py::arg("callback") = py::none(), py::arg("stop") = py::none(), R"(Deform a mesh towards its polycube.
 
 vertices (n, 3) float; face_indices: all face corners, flat; face_sizes: corners per face;
 labels: per face, 0..5 = +X, -X, +Y, -Y, +Z, -Z, -1 = nearest axis.
@@ -424,12 +425,17 @@ which the callback does not see; returning True stops them and keeps the run bef
 last_resort (robust): a run that does not become an exact polycube is run once more, silently,
 its flattening accepted up to half the area collapsed (stage 9; the report's last_resort says
 when that run was kept); False returns the first run's best state.
+polish (robust): an exact result's edge and area errors are lowered last, its charts kept flat and
+nothing turned over or newly collapsed (docs/design.md section 2.6, "Polish"; the report's
+polish_steps counts the steps kept, and the callback sees the result once more, as the last
+iteration); False returns the result as the run left it.
 Returns {"positions", "labels", "report"}; the report's face lists (unconverged_faces,
 flipped_face_ids, relabelled_faces) hold every id, as int32 arrays. Raises ValueError on bad input.)");
   m.def("nearest_labels", &nearest_labels_py, py::arg("vertices"), py::arg("face_indices"), py::arg("face_sizes"),
         "Label every face by the axis nearest its normal.");
   m.def("figures", &figures_py, py::arg("input_vertices"), py::arg("output_vertices"), py::arg("face_indices"),
-        py::arg("face_sizes"), py::arg("labels"), "The quality figures of output against input (docs/design.md section 4).");
+        py::arg("face_sizes"), py::arg("labels"),
+        "The quality figures of output against input (docs/design.md section 4).");
   m.def("refine", &refine_py, py::arg("vertices"), py::arg("face_indices"), py::arg("face_sizes"),
         py::arg("labels") = py::none(), py::kw_only(), py::arg("levels") = 1, py::arg("scheme") = "bilinear",
         R"(Subdivide uniformly with OpenSubdiv (scheme bilinear, loop or catmark; levels 1..8).
@@ -453,8 +459,8 @@ length, local repair of what breaks the polycube conditions, and relabelling of 
 would squeeze. detail (0..1): 0 few large charts, 1 many small ones; compactness, when given,
 overrides the one detail sets (larger: fewer, rounder charts). Deterministic. Raises ValueError
 on bad input.)");
-  m.def("validate_labels", &validate_labels_py, py::arg("vertices"), py::arg("face_indices"),
-        py::arg("face_sizes"), py::arg("labels"),
+  m.def("validate_labels", &validate_labels_py, py::arg("vertices"), py::arg("face_indices"), py::arg("face_sizes"),
+        py::arg("labels"),
         R"(Check labels against the polycube conditions and their realisability (docs/design.md
 sections 3.2 and 3.5).
 
@@ -479,8 +485,7 @@ meshes factorise with Eigen's simplicial LDLT (the report's "solver" says which)
 
   m.def("polycube_uv", &polycube_uv_py, py::arg("vertices"), py::arg("face_indices"), py::arg("face_sizes"),
         py::arg("polycube"), py::arg("labels") = py::none(), py::kw_only(), py::arg("pack") = true,
-        py::arg("padding") = PolycubeUvOptions{}.padding, py::arg("relax") = false,
-        py::arg("merge") = -1.0,
+        py::arg("padding") = PolycubeUvOptions{}.padding, py::arg("relax") = false, py::arg("merge") = -1.0,
         R"(A UV map from the mesh's polycube: one island per chart, the polycube's positions in the chart's plane.
 
 polycube: (n, 3) positions of the same vertices on the polycube (the last shape key of a run);

@@ -74,7 +74,7 @@ EXACT_MODEL = "B0 x64"
 TIMEOUT_SECONDS = 480
 
 # The stages of the report (docs/design.md section 2.6), each timed without the others.
-STAGES = ("set_up", "fit", "continuous", "relax", "flatten", "untangle", "measure")
+STAGES = ("set_up", "fit", "continuous", "relax", "flatten", "untangle", "measure", "polish")
 
 
 class RunError(RuntimeError):

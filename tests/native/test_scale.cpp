@@ -5,10 +5,9 @@
 // At 1e-150 .. 1e150 the unit box holds the model only up to rounding, and
 // the untangling stage (deform/untangle_flat_charts.h), a non-convex
 // minimisation, does not keep rounding-sized differences small: there the
-// runs agree exactly where nothing was untangled, and otherwise in what a
-// user sees (converged, flipped, folded, collapsed within a few triangles,
-// errors within 2%). The labeller, the validator and the orientation check
-// agree at every scale.
+// runs agree exactly where nothing was untangled (to 1e-6 where the polish,
+// deform/polish_stage.h, kept steps), and otherwise in what a user sees (converged, flipped, folded, collapsed within a
+// few triangles, errors within 2%). The labeller, the validator and the orientation check agree at every scale.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -57,8 +56,9 @@ std::vector<Model> models() {
 
 PolygonMesh scaled(const PolygonMesh& mesh, double scale) { return {mesh.vertices * scale, mesh.faces}; }
 
-void expect_relative(double a, double b, const std::string& what) {
-  EXPECT_LE(std::abs(a - b), 1e-9 * std::max(std::abs(a), std::abs(b)) + 1e-12) << what << ": " << a << " vs " << b;
+void expect_relative(double a, double b, const std::string& what, double tolerance = 1e-9) {
+  EXPECT_LE(std::abs(a - b), tolerance * std::max(std::abs(a), std::abs(b)) + 1e-12)
+      << what << ": " << a << " vs " << b;
 }
 
 // One run of `model` at `scale`, checked against `unit` (the run at 1).
@@ -66,12 +66,13 @@ void expect_same_run(const Model& model, const DeformResult& unit, double scale,
   const std::string what = model.name + " at " + std::to_string(scale);
   int callbacks = 0;
   bool positions_in_scale = true;
-  const DeformResult r = deform(scaled(model.mesh, scale), model.labels, {}, [&](int, const Vertices& x, const Figures&) {
-    ++callbacks;
-    positions_in_scale =
-        positions_in_scale && x.allFinite() && x.cwiseAbs().maxCoeff() > 1e-3 * scale && x.cwiseAbs().maxCoeff() < 1e3 * scale;
-    return true;
-  });
+  const DeformResult r =
+      deform(scaled(model.mesh, scale), model.labels, {}, [&](int, const Vertices& x, const Figures&) {
+        ++callbacks;
+        positions_in_scale = positions_in_scale && x.allFinite() && x.cwiseAbs().maxCoeff() > 1e-3 * scale &&
+                             x.cwiseAbs().maxCoeff() < 1e3 * scale;
+        return true;
+      });
   EXPECT_EQ(callbacks, r.iterations) << what;
   EXPECT_TRUE(positions_in_scale) << what;
   EXPECT_EQ(r.converged, unit.converged) << what;
@@ -92,12 +93,17 @@ void expect_same_run(const Model& model, const DeformResult& unit, double scale,
   EXPECT_EQ(r.figures.collapsed_faces, unit.figures.collapsed_faces) << what;
   EXPECT_EQ(r.flat_iteration, unit.flat_iteration) << what;
   EXPECT_EQ(r.unconverged_faces, unit.unconverged_faces) << what;
+  EXPECT_EQ(r.polish_steps, unit.polish_steps) << what;
+  // The polish compares two energies to keep a step: rounding can tip one
+  // of those comparisons, and the steps after it differ by as much. Close,
+  // not identical.
+  const double tolerance = unit.polish_steps > 0 ? 1e-6 : 1e-9;
   expect_relative(r.figures.normal_deviation_max_deg, unit.figures.normal_deviation_max_deg, what + " max deg");
   expect_relative(r.figures.normal_deviation_mean_deg, unit.figures.normal_deviation_mean_deg, what + " mean deg");
-  expect_relative(r.figures.edge_error, unit.figures.edge_error, what + " edge error");
-  expect_relative(r.figures.area_error, unit.figures.area_error, what + " area error");
+  expect_relative(r.figures.edge_error, unit.figures.edge_error, what + " edge error", tolerance);
+  expect_relative(r.figures.area_error, unit.figures.area_error, what + " area error", tolerance);
   const double size = unit.positions.cwiseAbs().maxCoeff();
-  EXPECT_LE((r.positions / scale - unit.positions).cwiseAbs().maxCoeff(), 1e-9 * size) << what;
+  EXPECT_LE((r.positions / scale - unit.positions).cwiseAbs().maxCoeff(), tolerance * size) << what;
 }
 
 TEST(Scale, DeformGivesTheSameRunAtEveryScale) {

@@ -87,6 +87,23 @@ def test_no_last_resort_returns_the_first_run(program, tmp_path):
     assert not reports[True]["converged"] and not reports[True]["last_resort"]
 
 
+def test_no_polish_returns_the_run_as_it_ended(program, tmp_path):
+    # As the module's polish=False: B0's exact polycube, then its edge and
+    # area errors lowered inside the flat charts.
+    surface, labels = SHARED_DATA / "B0" / "surface.obj", SHARED_DATA / "B0" / "labeling.txt"
+    if not surface.exists():
+        pytest.skip("shared data missing")
+    reports = {}
+    for flags in ([], ["--no-polish"]):
+        result = run(program, "deform", surface, "--labels", labels, *flags)
+        assert result.returncode == 0, result.stderr
+        reports[bool(flags)] = json.loads(result.stdout)
+    polished, plain = reports[False], reports[True]
+    assert plain["polish_steps"] == 0 < polished["polish_steps"]
+    assert polished["converged"] and polished["flipped_faces"] == 0
+    assert polished["edge_error"] < 0.9 * plain["edge_error"] and polished["area_error"] < 0.9 * plain["area_error"]
+
+
 def test_a_small_mesh_loads_no_cholmod(program, sphere_off, tmp_path):
     # CHOLMOD, OpenBLAS and gfortran cost about 5 MiB and 20 ms at start-up;
     # they come in a plugin loaded for large systems only (supernodal_factor.h).

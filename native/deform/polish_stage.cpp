@@ -1,0 +1,360 @@
+#include "deform/polish_stage.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include "deform/chart_planes.h"
+#include "deform/flatten_charts.h"
+#include "deform/robust_run.h"
+#include "labels/axis.h"
+
+namespace polycube {
+namespace {
+
+// How far the polish may stretch or shrink a triangle: its area over its
+// input area times the run's scale s^2 (held at the run's, so that a
+// triangle whose corners stand still stays in bounds as the mesh's total
+// area moves).
+struct AreaBounds {
+  double scale2 = 1.0, smallest = 0.0, largest = 0.0;
+};
+
+// From the run's positions towards `target` (flat on the same charts), every
+// unknown of `planes` with its own share of the step: the shares of the
+// unknowns around a triangle that blocks (turns over, or leaves its area
+// bounds, unless the run left it collapsed) are halved, and after
+// kMaxHalvings halvings zeroed, until nothing blocks. The bounds hold at the
+// run's scale, so a triangle whose corners stand still never blocks; the
+// turn-over test is the figures' own, and a triangle the run left collapsed
+// that opens turned over can block with its corners still: after that many
+// rounds the step is dropped.
+Vertices controlled_blend(const Deformation& d, const ChartPlanes& planes, const Vertices& target,
+                          const std::vector<char>& collapsed_before, const AreaBounds& bounds,
+                          const std::vector<char>& held) {
+  const Triangles& triangles = d.triangles();
+  const Vertices step = target - d.x;
+  std::array<std::vector<double>, 3> share;
+  std::array<std::vector<int>, 3> halvings;
+  std::array<std::vector<char>, 3> marked;
+  for (int axis = 0; axis < 3; ++axis) {
+    const std::vector<int>& unknown = planes.unknowns(axis);
+    const int count = unknown.empty() ? 0 : *std::max_element(unknown.begin(), unknown.end()) + 1;
+    share[axis].assign(count, 1.0);
+    halvings[axis].assign(count, 0);
+    marked[axis].assign(count, 0);
+    for (int v = 0; v < d.n; ++v)
+      if (held[v]) share[axis][unknown[v]] = 0.0;
+  }
+  std::vector<char> collapsed, flipped;
+  std::vector<double> areas, areas_now;
+  const std::vector<double>& input_areas = d.quality.input_areas();
+  d.quality.fold_flags(d.x, collapsed, flipped, &areas_now);
+  const int max_rounds = 4 * (kMaxHalvings + 1);
+  for (int round = 0; round < max_rounds; ++round) {
+    Vertices next = d.x;
+    for (int axis = 0; axis < 3; ++axis) {
+      const std::vector<int>& unknown = planes.unknowns(axis);
+      for (int v = 0; v < d.n; ++v) next(v, axis) += share[axis][unknown[v]] * step(v, axis);
+    }
+    d.quality.fold_flags(next, collapsed, flipped, &areas);
+    bool blocked = false;
+    for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
+      // Turned over, or its area further out of bounds than it is now (a
+      // triangle at a bound stays there however rounding moves it).
+      const double ratio = areas[t] / (bounds.scale2 * input_areas[t]);
+      const bool out =
+          input_areas[t] > 0.0 && ((ratio > bounds.largest && areas[t] > areas_now[t]) ||
+                                   (!collapsed_before[t] && ratio < bounds.smallest && areas[t] < areas_now[t]));
+      if (!flipped[t] && !out) continue;
+      blocked = true;
+      for (int k = 0; k < 3; ++k)
+        for (int axis = 0; axis < 3; ++axis) marked[axis][planes.unknowns(axis)[triangles(t, k)]] = 1;
+    }
+    if (!blocked) return next;
+    for (int axis = 0; axis < 3; ++axis)
+      for (size_t u = 0; u < share[axis].size(); ++u) {
+        if (!marked[axis][u]) continue;
+        marked[axis][u] = 0;
+        share[axis][u] = ++halvings[axis][u] > kMaxHalvings ? 0.0 : 0.5 * share[axis][u];
+      }
+  }
+  return d.x;
+}
+
+// The figures' two errors (docs/design.md section 4) as a smooth energy:
+// the mean over edges of rho(log(l / (s l0))) and over triangles of
+// rho(log(A / (s^2 A0))), rho(u) = sqrt(u^2 + kSmoothing^2) ~ |u|, A the
+// area signed along the triangle's axis and s^2 the output area over the
+// input's, itself a function of the positions (a step that only rescales
+// gains nothing). Absolute values, as the figures: squares would trade many
+// small errors for a few large ones. Logarithms, unlike the figures' plain
+// ratios: |ratio - 1| is at most 1 for a shrinking triangle, so an energy
+// of those gains by sacrificing a few triangles to near collapse (the
+// eight's polycube UVs went from 2.2 to 8.6 in angle distortion); a
+// logarithm grows without bound as a triangle or edge shrinks to nothing.
+// What the run left collapsed (`left_out`, and edges of no length) is not
+// counted.
+constexpr double kSmoothing = 1e-3;
+
+double rho(double u) { return std::sqrt(u * u + kSmoothing * kSmoothing); }
+double rho_slope(double u) { return u / rho(u); }
+
+// The smooth errors, and the figures' own (quality.h), measured in the same pass.
+struct Errors {
+  static constexpr double kNone = std::numeric_limits<double>::infinity();
+  double edge = kNone, area = kNone, figure_edge = kNone, figure_area = kNone;
+  // Neither smooth error larger than `other`'s, their sum smaller.
+  bool better_than(const Errors& other) const {
+    return edge <= other.edge && area <= other.area && edge + area < other.edge + other.area;
+  }
+  // Neither figure larger than `other`'s, their sum smaller.
+  bool better_figures_than(const Errors& other) const {
+    return figure_edge <= other.figure_edge && figure_area <= other.figure_area &&
+           figure_edge + figure_area < other.figure_edge + other.figure_area;
+  }
+};
+
+struct LeftOut {
+  std::vector<char> triangles, edges;
+};
+
+// With `gradients`, each error's gradient by position too.
+Errors smooth_errors(const Deformation& d, const LeftOut& left_out, const Vertices& x,
+                     std::array<Vertices, 2>* gradients = nullptr) {
+  const QualityMeasure& q = d.quality;
+  const auto& edges = q.edges();
+  const auto& lengths = q.input_lengths();
+  const auto& areas = q.input_areas();
+  const Triangles& triangles = d.triangles();
+  const Eigen::Index count = triangles.rows();
+  std::vector<double> area(count);
+  double total = 0.0, figure_total = 0.0;
+  for (Eigen::Index t = 0; t < count; ++t) {
+    const Eigen::Vector3d pa = x.row(triangles(t, 0)), pb = x.row(triangles(t, 1)), pc = x.row(triangles(t, 2));
+    const Eigen::Vector3d normal = (pb - pa).cross(pc - pa);
+    area[t] = 0.5 * normal.dot(label_axis(d.triangle_labels[t]));
+    total += area[t];
+    figure_total += 0.5 * normal.norm();
+  }
+  const double input_total = q.input_total_area();
+  if (!(total > 0.0) || !(input_total > 0.0)) return {};
+  const double s2 = total / input_total, log_scale = 0.5 * std::log(s2);
+  const double figure_s2 = figure_total / input_total, figure_scale = std::sqrt(figure_s2);
+  double figure_edge = 0.0, figure_area = 0.0;
+  long measured_edges = 0, measured_triangles = 0;
+  const double edge_count = static_cast<double>(edges.size()), triangle_count = static_cast<double>(count);
+  Errors errors{0.0, 0.0};
+  // Each error's derivative by s^2, which moves with every triangle's area.
+  std::array<double, 2> by_scale = {0.0, 0.0};
+  if (gradients)
+    for (Vertices& g : *gradients) g.setZero(x.rows(), 3);
+  for (size_t e = 0; e < edges.size(); ++e) {
+    if (lengths[e] <= 0.0) continue;
+    const auto [i, j] = edges[e];
+    const Eigen::RowVector3d v = x.row(i) - x.row(j);
+    const double length2 = v.squaredNorm();
+    figure_edge += std::abs(std::sqrt(length2) / (figure_scale * lengths[e]) - 1.0);
+    ++measured_edges;
+    if (left_out.edges[e]) continue;
+    if (!(length2 > 0.0)) return {};
+    const double u = 0.5 * std::log(length2) - log_scale - std::log(lengths[e]);
+    errors.edge += rho(u);
+    by_scale[0] -= rho_slope(u) / (2.0 * s2 * edge_count);
+    if (!gradients) continue;
+    const Eigen::RowVector3d g = (rho_slope(u) / (length2 * edge_count)) * v;
+    (*gradients)[0].row(i) += g;
+    (*gradients)[0].row(j) -= g;
+  }
+  std::vector<double> by_area(count, 0.0);  // the area error's derivative by A at fixed s^2
+  for (Eigen::Index t = 0; t < count; ++t) {
+    if (areas[t] <= 0.0) continue;
+    figure_area += std::abs(std::abs(area[t]) / (figure_s2 * areas[t]) - 1.0);
+    ++measured_triangles;
+    if (left_out.triangles[t]) continue;
+    if (!(area[t] > 0.0)) return {};
+    const double r = std::log(area[t] / (s2 * areas[t]));
+    errors.area += rho(r);
+    by_scale[1] -= rho_slope(r) / (s2 * triangle_count);
+    by_area[t] = rho_slope(r) / (area[t] * triangle_count);
+  }
+  errors.edge /= edge_count;
+  errors.area /= triangle_count;
+  errors.figure_edge = measured_edges > 0 ? figure_edge / measured_edges : 0.0;
+  errors.figure_area = measured_triangles > 0 ? figure_area / measured_triangles : 0.0;
+  if (!gradients) return errors;
+  for (Eigen::Index t = 0; t < count; ++t) {
+    // A's gradient: half the opposite edge turned about the axis.
+    const Eigen::Vector3d axis = label_axis(d.triangle_labels[t]);
+    const int a = triangles(t, 0), b = triangles(t, 1), c = triangles(t, 2);
+    const Eigen::Vector3d pa = x.row(a), pb = x.row(b), pc = x.row(c);
+    const std::array<double, 2> by = {by_scale[0] / input_total, by_area[t] + by_scale[1] / input_total};
+    for (int k = 0; k < 2; ++k) {
+      const double f = 0.5 * by[k];
+      (*gradients)[k].row(a) += f * (pb - pc).cross(axis).transpose();
+      (*gradients)[k].row(b) += f * (pc - pa).cross(axis).transpose();
+      (*gradients)[k].row(c) += f * (pa - pb).cross(axis).transpose();
+    }
+  }
+  return errors;
+}
+
+// Vertices on an edge of one triangle: held where they are. An open
+// boundary is where the user's mesh ends or continues, and the remesher
+// lays it along grid lines (quad_remesh.h); moved by the polish, the
+// shark's fourth hole turned back on itself and the remesh had 83
+// irregular vertices instead of 43.
+std::vector<char> open_boundary_vertices(int n, const Triangles& triangles) {
+  std::vector<std::pair<int, int>> edges;
+  edges.reserve(3 * static_cast<size_t>(triangles.rows()));
+  for (Eigen::Index t = 0; t < triangles.rows(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int a = triangles(t, k), b = triangles(t, (k + 1) % 3);
+      edges.emplace_back(std::min(a, b), std::max(a, b));
+    }
+  std::sort(edges.begin(), edges.end());
+  std::vector<char> boundary(n, 0);
+  for (size_t i = 0; i < edges.size();) {
+    size_t j = i;
+    while (j < edges.size() && edges[j] == edges[i]) ++j;
+    if (j - i == 1) boundary[edges[i].first] = boundary[edges[i].second] = 1;
+    i = j;
+  }
+  return boundary;
+}
+
+// The slivers the run collapsed onto a line (flatten_charts.h) stay on it:
+// their corners share a coordinate besides their chart's.
+void keep_collapsed_on_their_lines(const RobustRun& run, ChartPlanes& planes) {
+  const Deformation& d = run.d;
+  const Triangles& triangles = d.triangles();
+  for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
+    if (!run.state.collapsed[t]) continue;
+    for (int axis = 0; axis < 3; ++axis) {
+      if (axis == d.triangle_labels[t] / 2) continue;
+      const double c = d.x(triangles(t, 0), axis);
+      if (d.x(triangles(t, 1), axis) == c && d.x(triangles(t, 2), axis) == c) planes.collapse(t, axis);
+    }
+  }
+}
+
+// The bounds on every triangle's area (header): the run's largest ratio and
+// half its smallest, or kPolishStretch either way.
+AreaBounds area_bounds(const Deformation& d) {
+  AreaBounds bounds;
+  std::vector<char> collapsed, flipped;
+  std::vector<double> areas;
+  bounds.scale2 = d.quality.fold_flags(d.x, collapsed, flipped, &areas);
+  bounds.smallest = 1.0 / kPolishStretch;
+  bounds.largest = kPolishStretch;
+  const std::vector<double>& input_areas = d.quality.input_areas();
+  for (size_t t = 0; t < areas.size(); ++t) {
+    if (!(input_areas[t] > 0.0)) continue;
+    const double ratio = areas[t] / (bounds.scale2 * input_areas[t]);
+    bounds.largest = std::max(bounds.largest, ratio);
+    if (!collapsed[t]) bounds.smallest = std::min(bounds.smallest, 0.5 * ratio);
+  }
+  // A triangle collapses below kCollapsedAreaRatio at the current scale,
+  // which a step moves: twice that keeps every triangle the run left open
+  // open at any scale up to twice the run's.
+  bounds.smallest = std::max(bounds.smallest, 2.0 * kCollapsedAreaRatio);
+  return bounds;
+}
+
+// What the run left collapsed: its collapsed triangles and edges of no length.
+LeftOut left_out_of(const RobustRun& run) {
+  const Deformation& d = run.d;
+  LeftOut left_out;
+  left_out.triangles = run.state.collapsed;
+  const auto& edges = d.quality.edges();
+  left_out.edges.resize(edges.size());
+  for (size_t e = 0; e < edges.size(); ++e)
+    left_out.edges[e] = !((d.x.row(edges[e].first) - d.x.row(edges[e].second)).squaredNorm() > 0.0);
+  return left_out;
+}
+
+// Each error's gradient smoothed by the flat charts' Laplacian L (a Sobolev
+// gradient: a step along it keeps the charts flat and moves regions rather
+// than single vertices; two back-substitutions), then the blend of the two
+// shortest in L's norm: along it neither error grows (the common descent
+// direction of two objectives) unless no step can do that.
+Vertices common_descent(const ChartPlanes& planes, const std::array<Vertices, 2>& gradients) {
+  std::array<Vertices, 2> steps;
+  for (int k = 0; k < 2; ++k) steps[k] = planes.solve(-gradients[k]);
+  // <s_i, s_j> in L's norm is -g_i . s_j.
+  const double a = -(gradients[0].cwiseProduct(steps[0])).sum(), b = -(gradients[1].cwiseProduct(steps[1])).sum(),
+               c = -(gradients[0].cwiseProduct(steps[1])).sum();
+  const double weight = a + b - 2.0 * c > 0.0 ? std::clamp((b - c) / (a + b - 2.0 * c), 0.0, 1.0) : 0.5;
+  return weight * steps[0] + (1.0 - weight) * steps[1];
+}
+
+}  // namespace
+
+int polish_stage(RobustRun& run) {
+  Deformation& d = run.d;
+  ChartPlanes planes(d.n, d.triangles(), d.triangle_labels);
+  keep_collapsed_on_their_lines(run, planes);
+  planes.factorize(d.laplacian.matrix());
+  const Figures start = d.quality.measure(d.x, run.state);
+  const AreaBounds bounds = area_bounds(d);
+  const LeftOut left_out = left_out_of(run);
+  const std::vector<char>& collapsed = run.state.collapsed;
+  const std::vector<char> held = open_boundary_vertices(d.n, d.triangles());
+  double step_length = 0.0;
+  std::vector<double> sums;
+  std::array<Vertices, 2> gradients, trial_gradients;
+  // Steps follow the smooth errors; what is returned is the state, after
+  // any step, with the lowest figures of those in which neither grew.
+  Errors errors = smooth_errors(d, left_out, d.x, &gradients), best = errors;
+  const Vertices start_x = d.x;
+  Vertices best_x = d.x;
+  int steps = 0, best_steps = 0;
+  for (; steps < kPolishRounds; ++steps) {
+    const double sum = errors.edge + errors.area;
+    sums.push_back(sum);
+    if (steps >= kPolishWindow && sums[steps - kPolishWindow] - sum < kPolishGain * sum) break;
+    const Vertices direction = common_descent(planes, gradients);
+    d.result.back_substitutions += 2;
+    const double largest = direction.rowwise().norm().maxCoeff();
+    if (!(largest > 0.0)) break;
+    if (step_length == 0.0) step_length = kPolishFirstStep * run.diagonal / largest;
+    // The longest step, halving from twice the last one kept, along which
+    // neither smooth error grows.
+    bool moved = false;
+    for (int halving = 0; halving <= 2 * kMaxHalvings && !moved; ++halving, step_length *= 0.5) {
+      Vertices next = controlled_blend(d, planes, d.x + step_length * direction, collapsed, bounds, held);
+      const Errors next_errors = smooth_errors(d, left_out, next, &trial_gradients);
+      if (!next_errors.better_than(errors)) continue;
+      // Placing moves each component as a whole: the errors and their gradients stay.
+      d.x = place_components(next, next, d.parts, d.centroids);
+      errors = next_errors;
+      std::swap(gradients, trial_gradients);
+      moved = true;
+    }
+    if (!moved) break;
+    step_length *= 4.0;  // twice the step kept, undoing the loop's last halving
+    if (errors.better_figures_than(best)) {
+      best = errors;
+      best_x = d.x;
+      best_steps = steps + 1;
+    }
+  }
+  d.result.factorizations += planes.factorizations();
+  d.x = std::move(best_x);
+  if (best_steps == 0) return 0;
+  // Measured once more as the report does, before keeping it.
+  FaceStates state = d.quality.face_states(d.x);
+  const Figures figures = d.quality.measure(d.x, state);
+  if (!(figures.edge_error <= start.edge_error && figures.area_error <= start.area_error)) {
+    d.x = start_x;
+    return 0;
+  }
+  run.state = std::move(state);
+  return best_steps;
+}
+
+}  // namespace polycube
