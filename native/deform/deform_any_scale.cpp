@@ -244,7 +244,15 @@ void polish(const PolygonMesh& mesh, const std::vector<int>& labels, const Defor
   const IterationCallback none;
   Deformation d(mesh, result.labels, from_result, none);
   RobustRun run(d);
-  const int steps = polish_stage(run);
+  int steps = 0;
+  // A polish that breaks down (a flat-chart system that cannot be
+  // factorised, a solve that is not finite) costs the caller nothing: the
+  // run's result stands.
+  try {
+    steps = polish_stage(run);
+  } catch (const Error&) {
+    steps = 0;
+  }
   result.factorizations += d.result.factorizations;
   result.back_substitutions += d.result.back_substitutions;
   StageSeconds& stages = result.stages;
