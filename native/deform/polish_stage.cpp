@@ -25,14 +25,15 @@ struct AreaBounds {
 };
 
 // From the run's positions towards `target` (flat on the same charts), every
-// unknown of `planes` with its own share of the step: the shares of the
-// unknowns around a triangle that blocks (turns over, or leaves its area
-// bounds, unless the run left it collapsed) are halved, and after
-// kMaxHalvings halvings zeroed, until nothing blocks. The bounds hold at the
-// run's scale, so a triangle whose corners stand still never blocks; the
-// turn-over test is the figures' own, and a triangle the run left collapsed
-// that opens turned over can block with its corners still: after that many
-// rounds the step is dropped.
+// unknown of `planes` with its own share of the step (none for the `held`
+// vertices'): the shares of the unknowns around a triangle that blocks
+// (turns over, stretches past its bound, or, unless the run left it
+// collapsed, shrinks past it) are halved, and after kMaxHalvings halvings
+// zeroed, until nothing blocks. The bounds hold at the run's scale, so a
+// triangle whose corners stand still never blocks; the turn-over test is the
+// figures' own, and a triangle the run left collapsed that opens turned over
+// can block with its corners still: after that many rounds the step is
+// dropped.
 Vertices controlled_blend(const Deformation& d, const ChartPlanes& planes, const Vertices& target,
                           const std::vector<char>& collapsed_before, const AreaBounds& bounds,
                           const std::vector<char>& held) {
@@ -310,6 +311,9 @@ int polish_stage(RobustRun& run) {
   // Steps follow the smooth errors; what is returned is the state, after
   // any step, with the lowest figures of those in which neither grew.
   Errors errors = smooth_errors(d, left_out, d.x, &gradients), best = errors;
+  // No smooth errors to lower (no area along the axes at all, or an edge the
+  // run squeezed to nothing besides its collapsed ones): nothing to polish.
+  if (!std::isfinite(errors.edge + errors.area)) return 0;
   const Vertices start_x = d.x;
   Vertices best_x = d.x;
   int steps = 0, best_steps = 0;
