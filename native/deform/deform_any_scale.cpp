@@ -263,7 +263,7 @@ void polish(const PolygonMesh& mesh, const std::vector<int>& labels, const Defor
   if (steps > 0) {
     result.polish_steps = steps;
     result.positions = std::move(d.x);
-    result.figures = d.quality.measure(result.positions, run.state);
+    result.figures = d.result.figures;  // measured by the polish
     result.given_labels_figures = result.relabelled_faces.empty()
                                       ? result.figures
                                       : given_labels_figures(mesh, d.triangulation, labels, result.positions);

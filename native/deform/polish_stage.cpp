@@ -9,7 +9,6 @@
 #include <vector>
 
 #include "deform/chart_planes.h"
-#include "deform/flatten_charts.h"
 #include "deform/robust_run.h"
 #include "labels/axis.h"
 
@@ -24,7 +23,8 @@ struct AreaBounds {
   double scale2 = 1.0, smallest = 0.0, largest = 0.0;
 };
 
-// From the run's positions towards `target` (flat on the same charts), every
+// From the run's positions (whose triangle areas are `areas_now`) towards
+// `target` (flat on the same charts), every
 // unknown of `planes` with its own share of the step (none for the `held`
 // vertices'): the shares of the unknowns around a triangle that blocks
 // (turns over, stretches past its bound, or, unless the run left it
@@ -36,7 +36,7 @@ struct AreaBounds {
 // dropped.
 Vertices controlled_blend(const Deformation& d, const ChartPlanes& planes, const Vertices& target,
                           const std::vector<char>& collapsed_before, const AreaBounds& bounds,
-                          const std::vector<char>& held) {
+                          const std::vector<char>& held, const std::vector<double>& areas_now) {
   const Triangles& triangles = d.triangles();
   const Vertices step = target - d.x;
   std::array<std::vector<double>, 3> share;
@@ -52,9 +52,8 @@ Vertices controlled_blend(const Deformation& d, const ChartPlanes& planes, const
       if (held[v]) share[axis][unknown[v]] = 0.0;
   }
   std::vector<char> collapsed, flipped;
-  std::vector<double> areas, areas_now;
+  std::vector<double> areas;
   const std::vector<double>& input_areas = d.quality.input_areas();
-  d.quality.fold_flags(d.x, collapsed, flipped, &areas_now);
   const int max_rounds = 4 * (kMaxHalvings + 1);
   for (int round = 0; round < max_rounds; ++round) {
     Vertices next = d.x;
@@ -328,19 +327,26 @@ int polish_stage(RobustRun& run) {
     if (step_length == 0.0) step_length = kPolishFirstStep * run.diagonal / largest;
     // The longest step, halving from twice the last one kept, along which
     // neither smooth error grows.
+    std::vector<char> unused_collapsed, unused_flipped;
+    std::vector<double> areas_now;
+    d.quality.fold_flags(d.x, unused_collapsed, unused_flipped, &areas_now);
     bool moved = false;
-    for (int halving = 0; halving <= 2 * kMaxHalvings && !moved; ++halving, step_length *= 0.5) {
-      Vertices next = controlled_blend(d, planes, d.x + step_length * direction, collapsed, bounds, held);
+    for (int halving = 0; halving <= 2 * kMaxHalvings; ++halving) {
+      Vertices next = controlled_blend(d, planes, d.x + step_length * direction, collapsed, bounds, held, areas_now);
       const Errors next_errors = smooth_errors(d, left_out, next, &trial_gradients);
-      if (!next_errors.better_than(errors)) continue;
+      if (!next_errors.better_than(errors)) {
+        step_length *= 0.5;
+        continue;
+      }
       // Placing moves each component as a whole: the errors and their gradients stay.
       d.x = place_components(next, next, d.parts, d.centroids);
       errors = next_errors;
       std::swap(gradients, trial_gradients);
       moved = true;
+      break;
     }
     if (!moved) break;
-    step_length *= 4.0;  // twice the step kept, undoing the loop's last halving
+    step_length *= 2.0;
     if (errors.better_figures_than(best)) {
       best = errors;
       best_x = d.x;
@@ -358,6 +364,7 @@ int polish_stage(RobustRun& run) {
     return 0;
   }
   run.state = std::move(state);
+  d.result.figures = figures;
   return best_steps;
 }
 

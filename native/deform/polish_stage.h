@@ -31,7 +31,8 @@
 //
 // Input: a RobustRun whose positions are an exact, fold-free polycube of its
 // labels, its Laplacian assembled. Output: the steps kept (0: the positions
-// are unchanged, as when either figure would have grown).
+// are unchanged, as when either figure would have grown); when more than 0,
+// run.state and run.d.result.figures are those of the new positions.
 #pragma once
 
 namespace polycube {
