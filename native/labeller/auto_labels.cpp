@@ -53,7 +53,7 @@ int invalid_violations(const LabelValidation& validation) {
 // faces, taken together, face away from its axis (the dino: one +Y chart
 // of 17 faces among 40 charts).
 std::vector<int> unreverse_charts(const PolygonMesh& mesh, const MeshAdjacency& adjacency, const LabelEnergy& energy,
-                                  const std::vector<double>& areas, std::vector<int> labels, int moves) {
+                                  const FaceGeometry& geometry, std::vector<int> labels, int moves) {
   const LabelValidation validation = validate_labels(mesh, labels);
   std::vector<int> moved = labels;
   bool reversed = false;
@@ -64,7 +64,7 @@ std::vector<int> unreverse_charts(const PolygonMesh& mesh, const MeshAdjacency& 
   }
   if (!reversed) return labels;
   moved = repair_charts(adjacency, energy, std::move(moved), moves);
-  moved = merge_tiny_charts(adjacency, energy, areas, std::move(moved), moves);
+  moved = merge_tiny_charts(adjacency, energy, geometry, std::move(moved), moves);
   return invalid_violations(validate_labels(mesh, moved)) < invalid_violations(validation) ? moved : labels;
 }
 
@@ -99,10 +99,9 @@ std::vector<int> auto_labels(const PolygonMesh& input, const AutoLabelOptions& o
   const int vertex_count = static_cast<int>(mesh.vertices.rows());
   const MeshAdjacency adjacency = mesh_adjacency(mesh.faces, vertex_count);
   const Triangulation triangulation = triangulate(mesh.vertices, mesh.faces);
-  std::vector<double> areas(mesh.faces.count());
-  for (int f = 0; f < mesh.faces.count(); ++f) areas[f] = 0.5 * newell_normal(mesh.vertices, mesh.faces, f).norm();
+  const FaceGeometry geometry = face_geometry(mesh.vertices, mesh.faces);
   const StraightenOptions so{options.straighten_iterations,
-                             smoothing_rings(mesh, areas, options.straighten_reach, options.straighten_rings)};
+                             smoothing_rings(mesh, geometry.areas, options.straighten_reach, options.straighten_rings)};
   PolygonMesh straight{straighten(mesh.vertices, triangulation.triangles, so), mesh.faces};
   const LabelEnergy energy = label_energy(straight, mesh.vertices, adjacency, options.compactness);
   std::vector<int> labels(mesh.faces.count());
@@ -114,13 +113,13 @@ std::vector<int> auto_labels(const PolygonMesh& input, const AutoLabelOptions& o
   }
   labels = alpha_expansion(energy, std::move(labels));
   if (options.repair) {
-    labels = merge_tiny_charts(adjacency, energy, areas, std::move(labels), options.repair_moves);
+    labels = merge_tiny_charts(adjacency, energy, geometry, std::move(labels), options.repair_moves);
     labels = repair_charts(adjacency, energy, std::move(labels), options.repair_moves);
-    labels = merge_tiny_charts(adjacency, energy, areas, std::move(labels), options.repair_moves);
+    labels = merge_tiny_charts(adjacency, energy, geometry, std::move(labels), options.repair_moves);
     // Faces facing away from their labels, then what relabelling them broke.
     if (relabel_faces_facing_away(mesh, face_neighbours(adjacency, mesh.faces.count()), labels) > 0) {
       labels = repair_charts(adjacency, energy, std::move(labels), options.repair_moves);
-      labels = merge_tiny_charts(adjacency, energy, areas, std::move(labels), options.repair_moves);
+      labels = merge_tiny_charts(adjacency, energy, geometry, std::move(labels), options.repair_moves);
     }
     // Squeezed triangles, then what relabelling them broke; a few rounds,
     // as each repair can leave new teeth. Kept only when the polycube
@@ -131,15 +130,16 @@ std::vector<int> auto_labels(const PolygonMesh& input, const AutoLabelOptions& o
       if (unsqueeze_labels(vertex_count, triangulation.triangles, triangulation.face_of_triangle, unsqueezed) == 0)
         break;
       unsqueezed = repair_charts(adjacency, energy, std::move(unsqueezed), options.repair_moves);
-      unsqueezed = merge_tiny_charts(adjacency, energy, areas, std::move(unsqueezed), options.repair_moves);
+      unsqueezed = merge_tiny_charts(adjacency, energy, geometry, std::move(unsqueezed), options.repair_moves);
     }
     if (violation_score(adjacency, unsqueezed) <= violations) labels = std::move(unsqueezed);
   }
   label_open_caps(mesh, adjacency, labels);
   if (options.repair)
-    labels = simplify_charts(adjacency, energy, areas, std::move(labels), options.simplify_below, options.repair_moves);
+    labels =
+        simplify_charts(adjacency, energy, geometry, std::move(labels), options.simplify_below, options.repair_moves);
   if (options.repair)
-    labels = unreverse_charts(mesh, adjacency, energy, areas, std::move(labels), options.repair_moves);
+    labels = unreverse_charts(mesh, adjacency, energy, geometry, std::move(labels), options.repair_moves);
   if (straightened) *straightened = unit.box().from_unit(straight.vertices, mesh.vertices, input.vertices);
   return labels;
 }

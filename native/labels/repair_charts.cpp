@@ -20,6 +20,15 @@ constexpr int kEachFaceBest = 6;
 constexpr int kTinyFaces = 3;
 constexpr double kTinyShare = 1e-3;
 
+// Fewer than kTinyFaces faces, not all of them flat on the chart's axis
+// already (repair_charts.h).
+bool few_faces(const std::vector<int>& chart_faces, int label, const FaceGeometry& geometry) {
+  if (chart_faces.size() >= static_cast<size_t>(kTinyFaces)) return false;
+  for (int f : chart_faces)
+    if (geometry.on_axis[f] != label) return true;
+  return false;
+}
+
 struct Move {
   Move(std::vector<int> faces_, int label_, int axis_ = -1) : faces(std::move(faces_)), label(label_), axis(axis_) {}
   std::vector<int> faces;
@@ -148,8 +157,9 @@ std::vector<Move> candidate_moves(const LabelEnergy& energy, const std::vector<i
 }  // namespace
 
 std::vector<int> merge_tiny_charts(const MeshAdjacency& adjacency, const LabelEnergy& energy,
-                                   const std::vector<double>& areas, std::vector<int> labels, int max_moves) {
+                                   const FaceGeometry& geometry, std::vector<int> labels, int max_moves) {
   const int face_count = static_cast<int>(labels.size());
+  const std::vector<double>& areas = geometry.areas;
   double total_area = 0.0;
   for (double a : areas) total_area += a;
   int score = violation_score(adjacency, labels);
@@ -169,7 +179,8 @@ std::vector<int> merge_tiny_charts(const MeshAdjacency& adjacency, const LabelEn
     }
     std::vector<int> tiny;
     for (int c = 0; c < ch.count(); ++c)
-      if (!neighbours[c].empty() && (ch.faces[c] < kTinyFaces || chart_area[c] < kTinyShare * total_area))
+      if (!neighbours[c].empty() &&
+          (few_faces(chart_faces[c], ch.label[c], geometry) || chart_area[c] < kTinyShare * total_area))
         tiny.push_back(c);
     std::stable_sort(tiny.begin(), tiny.end(), [&](int a, int b) { return chart_area[a] < chart_area[b]; });
     bool merged = false;
@@ -336,9 +347,10 @@ std::vector<int> repair_charts(const MeshAdjacency& adjacency, const LabelEnergy
 }
 
 std::vector<int> simplify_charts(const MeshAdjacency& adjacency, const LabelEnergy& energy,
-                                 const std::vector<double>& areas, std::vector<int> labels, double max_share,
+                                 const FaceGeometry& geometry, std::vector<int> labels, double max_share,
                                  int max_moves) {
   const int face_count = static_cast<int>(labels.size());
+  const std::vector<double>& areas = geometry.areas;
   Greedy greedy = make_greedy(adjacency, energy, face_count);
   double total_area = 0.0;
   for (double a : areas) total_area += a;
@@ -356,7 +368,8 @@ std::vector<int> simplify_charts(const MeshAdjacency& adjacency, const LabelEner
     }
     std::vector<int> small;
     for (int c = 0; c < ch.count(); ++c)
-      if (!neighbours[c].empty() && (ch.faces[c] < kTinyFaces || chart_area[c] < max_share * total_area))
+      if (!neighbours[c].empty() &&
+          (few_faces(faces_of_chart[c], ch.label[c], geometry) || chart_area[c] < max_share * total_area))
         small.push_back(c);
     std::stable_sort(small.begin(), small.end(), [&](int a, int b) { return chart_area[a] < chart_area[b]; });
     bool merged = false;

@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "labels/alpha_expansion.h"
+#include "labels/face_geometry.h"
 #include "labels/violation_score.h"
 #include "mesh/mesh_adjacency.h"
 
@@ -43,9 +44,11 @@ std::vector<int> repair_charts(const MeshAdjacency& adjacency, const LabelEnergy
 // Tiny charts (fewer than three faces, or under 0.1% of the area: noise, and
 // more than the deformation can flatten) take the label of the neighbour that
 // costs least energy, smallest first, where that does not raise the violation
-// score. areas: per face.
+// score. A chart of one or two faces that all lie flat on its axis already is
+// not tiny: it is a wall of a model built from boxes (two long triangles),
+// and merged, the polycube would turn it through 90 degrees.
 std::vector<int> merge_tiny_charts(const MeshAdjacency& adjacency, const LabelEnergy& energy,
-                                   const std::vector<double>& areas, std::vector<int> labels, int max_moves);
+                                   const FaceGeometry& geometry, std::vector<int> labels, int max_moves);
 
 // Fewer charts where small ones only add detail: each chart under
 // `max_share` of the area or of fewer than three faces (tiny, as above, but
@@ -53,9 +56,9 @@ std::vector<int> merge_tiny_charts(const MeshAdjacency& adjacency, const LabelEn
 // polycube conditions), smallest first, takes a neighbour's label, and a
 // short repair run follows when that broke the polycube conditions; the
 // first such merge that ends with fewer charts and no higher violation score
-// is kept, until none is. areas: per face.
+// is kept, until none is.
 std::vector<int> simplify_charts(const MeshAdjacency& adjacency, const LabelEnergy& energy,
-                                 const std::vector<double>& areas, std::vector<int> labels, double max_share,
+                                 const FaceGeometry& geometry, std::vector<int> labels, double max_share,
                                  int max_moves);
 
 }  // namespace polycube
