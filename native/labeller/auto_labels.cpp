@@ -68,50 +68,13 @@ std::vector<int> unreverse_charts(const PolygonMesh& mesh, const MeshAdjacency& 
   return invalid_violations(validate_labels(mesh, moved)) < invalid_violations(validation) ? moved : labels;
 }
 
-}  // namespace
-
-AutoLabelOptions AutoLabelOptions::with_detail(double detail) {
-  if (!(detail >= 0.0 && detail <= 1.0)) throw Error("detail must be a number from 0 to 1");
-  AutoLabelOptions options;
-  options.compactness = 0.3 * std::pow(10.0, 1.0 - 2.0 * detail);
-  const double smoothing = std::pow(4.0, 1.0 - 2.0 * detail);
-  options.straighten_rings = std::max(1, static_cast<int>(std::lround(3.0 * smoothing)));
-  options.straighten_reach *= smoothing;
-  // Merging away small charts makes the coarse end of the knob what a user
-  // asks for there (Suzanne at 0: 12 charts, a head and its muzzle), but it
-  // loses limbs on organic models (the elephant's legs) and collapses more
-  // there. Even charts under 0.1% of the area, merged at the default, left
-  // armadillo and diplodocus with labels whose flat solve collapses more than
-  // stage 3 accepts (docs/design.md section 2.6), so the default keeps every
-  // chart the cut and the repair found but those of one or two faces (a
-  // chart that small has no room to flatten: Suzanne's 28 charts, eight of
-  // them of one or two faces, become 12).
-  options.simplify_below = std::max(0.0, 0.01 * (1.0 - 2.0 * detail));
-  return options;
-}
-
-std::vector<int> auto_labels(const PolygonMesh& input, const AutoLabelOptions& options, Vertices* straightened) {
-  const UnitBoxMesh unit(input);  // scale independence (unit_box.h); `straightened` goes back below
-  const PolygonMesh& mesh = unit.mesh();
-  check_input(mesh);
-  if (!(options.compactness >= 0.0) || !std::isfinite(options.compactness))
-    throw Error("compactness must be a finite number of at least 0");
+// Steps 3 to 7 of the labeller (docs/design.md section 3.3) on the graph
+// cut's labels.
+std::vector<int> repaired_labels(const PolygonMesh& mesh, const MeshAdjacency& adjacency,
+                                 const Triangulation& triangulation, const LabelEnergy& energy,
+                                 const FaceGeometry& geometry, std::vector<int> labels,
+                                 const AutoLabelOptions& options) {
   const int vertex_count = static_cast<int>(mesh.vertices.rows());
-  const MeshAdjacency adjacency = mesh_adjacency(mesh.faces, vertex_count);
-  const Triangulation triangulation = triangulate(mesh.vertices, mesh.faces);
-  const FaceGeometry geometry = face_geometry(mesh.vertices, mesh.faces);
-  const StraightenOptions so{options.straighten_iterations,
-                             smoothing_rings(mesh, geometry.areas, options.straighten_reach, options.straighten_rings)};
-  PolygonMesh straight{straighten(mesh.vertices, triangulation.triangles, so), mesh.faces};
-  const LabelEnergy energy = label_energy(straight, mesh.vertices, adjacency, options.compactness);
-  std::vector<int> labels(mesh.faces.count());
-  for (int f = 0; f < mesh.faces.count(); ++f) {
-    int best = 0;
-    for (int l = 1; l < 6; ++l)
-      if (energy.data(f, l) < energy.data(f, best)) best = l;
-    labels[f] = best;  // the nearest axis (lowest label on ties)
-  }
-  labels = alpha_expansion(energy, std::move(labels));
   if (options.repair) {
     labels = merge_tiny_charts(adjacency, energy, geometry, std::move(labels), options.repair_moves);
     labels = repair_charts(adjacency, energy, std::move(labels), options.repair_moves);
@@ -140,6 +103,69 @@ std::vector<int> auto_labels(const PolygonMesh& input, const AutoLabelOptions& o
         simplify_charts(adjacency, energy, geometry, std::move(labels), options.simplify_below, options.repair_moves);
   if (options.repair)
     labels = unreverse_charts(mesh, adjacency, energy, geometry, std::move(labels), options.repair_moves);
+  return labels;
+}
+
+}  // namespace
+
+AutoLabelOptions AutoLabelOptions::with_detail(double detail) {
+  if (!(detail >= 0.0 && detail <= 1.0)) throw Error("detail must be a number from 0 to 1");
+  AutoLabelOptions options;
+  options.compactness = 0.3 * std::pow(10.0, 1.0 - 2.0 * detail);
+  const double smoothing = std::pow(4.0, 1.0 - 2.0 * detail);
+  options.straighten_rings = std::max(1, static_cast<int>(std::lround(3.0 * smoothing)));
+  options.straighten_reach *= smoothing;
+  // Merging away small charts makes the coarse end of the knob what a user
+  // asks for there (Suzanne at 0: 12 charts, a head and its muzzle), but it
+  // loses limbs on organic models (the elephant's legs) and collapses more
+  // there. Even charts under 0.1% of the area, merged at the default, left
+  // armadillo and diplodocus with labels whose flat solve collapses more than
+  // stage 3 accepts (docs/design.md section 2.6), so the default keeps every
+  // chart the cut and the repair found but those of one or two faces (a
+  // chart that small has no room to flatten: Suzanne's 28 charts, eight of
+  // them of one or two faces, become 12).
+  options.simplify_below = std::max(0.0, 0.01 * (1.0 - 2.0 * detail));
+  return options;
+}
+
+std::vector<int> auto_labels(const PolygonMesh& input, const AutoLabelOptions& options, Vertices* straightened) {
+  const UnitBoxMesh unit(input);  // scale independence (unit_box.h); `straightened` goes back below
+  const PolygonMesh& mesh = unit.mesh();
+  check_input(mesh);
+  if (!(options.compactness >= 0.0) || !std::isfinite(options.compactness))
+    throw Error("compactness must be a finite number of at least 0");
+  const MeshAdjacency adjacency = mesh_adjacency(mesh.faces, static_cast<int>(mesh.vertices.rows()));
+  const Triangulation triangulation = triangulate(mesh.vertices, mesh.faces);
+  const FaceGeometry geometry = face_geometry(mesh.vertices, mesh.faces);
+  const StraightenOptions so{options.straighten_iterations,
+                             smoothing_rings(mesh, geometry.areas, options.straighten_reach, options.straighten_rings)};
+  PolygonMesh straight{straighten(mesh.vertices, triangulation.triangles, so), mesh.faces};
+  const LabelEnergy energy = label_energy(straight, mesh.vertices, adjacency, options.compactness);
+  std::vector<int> labels(mesh.faces.count());
+  for (int f = 0; f < mesh.faces.count(); ++f) {
+    int best = 0;
+    for (int l = 1; l < 6; ++l)
+      if (energy.data(f, l) < energy.data(f, best)) best = l;
+    labels[f] = best;  // the nearest axis (lowest label on ties)
+  }
+  labels = alpha_expansion(energy, std::move(labels));
+  std::vector<int> repaired = repaired_labels(mesh, adjacency, triangulation, energy, geometry, labels, options);
+  // Charts flat on their axes are kept however small (face_geometry.h);
+  // where that leaves labels the polycube conditions reject, merging them
+  // as any small chart is tried too, and the labels with fewer violations
+  // kept (mpi, 52 faces: one chart otherwise).
+  const bool on_axis = std::any_of(geometry.on_axis.begin(), geometry.on_axis.end(), [](int l) { return l >= 0; });
+  if (options.repair && on_axis) {
+    const int violations = invalid_violations(validate_labels(mesh, repaired));
+    if (violations > 0) {
+      FaceGeometry merged_geometry = geometry;
+      merged_geometry.on_axis.assign(merged_geometry.on_axis.size(), -1);
+      std::vector<int> merged =
+          repaired_labels(mesh, adjacency, triangulation, energy, merged_geometry, std::move(labels), options);
+      if (invalid_violations(validate_labels(mesh, merged)) < violations) repaired = std::move(merged);
+    }
+  }
+  labels = std::move(repaired);
   if (straightened) *straightened = unit.box().from_unit(straight.vertices, mesh.vertices, input.vertices);
   return labels;
 }
