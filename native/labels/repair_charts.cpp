@@ -20,13 +20,15 @@ constexpr int kEachFaceBest = 6;
 constexpr int kTinyFaces = 3;
 constexpr double kTinyShare = 1e-3;
 
-// Fewer than kTinyFaces faces, not all of them flat on the chart's axis
-// already (repair_charts.h).
-bool few_faces(const std::vector<int>& chart_faces, int label, const FaceGeometry& geometry) {
-  if (chart_faces.size() >= static_cast<size_t>(kTinyFaces)) return false;
+// Every face of the chart lies flat on its axis already (repair_charts.h).
+bool flat_on_axis(const std::vector<int>& chart_faces, int label, const FaceGeometry& geometry) {
   for (int f : chart_faces)
-    if (geometry.on_axis[f] != label) return true;
-  return false;
+    if (geometry.on_axis[f] != label) return false;
+  return true;
+}
+
+bool few_faces(const std::vector<int>& chart_faces, int label, const FaceGeometry& geometry) {
+  return chart_faces.size() < static_cast<size_t>(kTinyFaces) && !flat_on_axis(chart_faces, label, geometry);
 }
 
 struct Move {
@@ -180,7 +182,8 @@ std::vector<int> merge_tiny_charts(const MeshAdjacency& adjacency, const LabelEn
     std::vector<int> tiny;
     for (int c = 0; c < ch.count(); ++c)
       if (!neighbours[c].empty() &&
-          (few_faces(chart_faces[c], ch.label[c], geometry) || chart_area[c] < kTinyShare * total_area))
+          (chart_faces[c].size() < static_cast<size_t>(kTinyFaces) || chart_area[c] < kTinyShare * total_area) &&
+          !flat_on_axis(chart_faces[c], ch.label[c], geometry))
         tiny.push_back(c);
     std::stable_sort(tiny.begin(), tiny.end(), [&](int a, int b) { return chart_area[a] < chart_area[b]; });
     bool merged = false;

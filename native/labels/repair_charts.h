@@ -44,9 +44,9 @@ std::vector<int> repair_charts(const MeshAdjacency& adjacency, const LabelEnergy
 // Tiny charts (fewer than three faces, or under 0.1% of the area: noise, and
 // more than the deformation can flatten) take the label of the neighbour that
 // costs least energy, smallest first, where that does not raise the violation
-// score. A chart of one or two faces that all lie flat on its axis already is
-// not tiny: it is a wall of a model built from boxes (two long triangles),
-// and merged, the polycube would turn it through 90 degrees.
+// score. A chart whose faces all lie flat on its axis already is never tiny:
+// it is a wall of a model built from boxes (two long triangles, or a narrow
+// strip), and merged, the polycube would turn it through 90 degrees.
 std::vector<int> merge_tiny_charts(const MeshAdjacency& adjacency, const LabelEnergy& energy,
                                    const FaceGeometry& geometry, std::vector<int> labels, int max_moves);
 
