@@ -3,7 +3,7 @@
 polycubes: our quad remesh against QuadriFlow (`object.quadriflow_remesh`) at the same
 face count, our polycube UVs against Smart UV Project (`uv.smart_project`).
 
-    /usr/bin/python3 tests/benchmark/use_polycube.py [--faces 3000] [--models fandisk,B0,...]
+    /usr/bin/python3 tests/benchmark/use_polycube.py [--faces 3000] [--models fandisk,B0,...] [--detail D]
 
 Runs itself inside `blender -b`; polycubes come from `build/polycube deform --labels auto`
 (B0: its published labels). Prints two Markdown tables and writes build/bench/use/results.json.
@@ -53,10 +53,12 @@ def outside_blender():
     parser.add_argument("--models", default=",".join(name for name, _, _ in MODELS))
     parser.add_argument("--blender", default="blender")
     parser.add_argument("--pictures", default="", help="folder for the README's pictures (fandisk, suzanne)")
+    parser.add_argument("--detail", type=float, default=0.5,
+                        help="the automatic labels' detail (0..1; lower: fewer charts, fewer polycube corners)")
     args = parser.parse_args()
     OUT.mkdir(parents=True, exist_ok=True)
     command = [args.blender, "-b", "--factory-startup", "--python-exit-code", "1", "--python", __file__, "--",
-               "--faces", str(args.faces), "--models", args.models,
+               "--faces", str(args.faces), "--models", args.models, "--detail", str(args.detail),
                "--pictures", os.path.abspath(args.pictures) if args.pictures else ""]
     result = subprocess.run(command, capture_output=True, text=True)
     tables = [line[len("TABLE "):] for line in result.stdout.splitlines() if line.startswith("TABLE ")]
@@ -138,6 +140,7 @@ def inside_blender(argv):
     faces_wanted = int(argv[argv.index("--faces") + 1])
     wanted = argv[argv.index("--models") + 1].split(",")
     pictures = argv[argv.index("--pictures") + 1] if "--pictures" in argv else ""
+    detail = argv[argv.index("--detail") + 1] if "--detail" in argv else "0.5"
     shown = {}  # model -> (our quads, QuadriFlow's, our UVs) objects, for the pictures
 
     def write_off(path, vertices, indices, sizes):
@@ -253,7 +256,8 @@ def inside_blender(argv):
         polycube_path, report_path = OUT / f"{name}-polycube.obj", OUT / f"{name}-deform.json"
         start = time.perf_counter()
         subprocess.run([str(BUILD / "polycube"), "deform", str(mesh_path), "--labels", str(labels),
-                        "--iterations", "200", "--output", str(polycube_path), "--report", str(report_path)],
+                        "--iterations", "200", "--detail", detail, "--output", str(polycube_path),
+                        "--report", str(report_path)],
                        check=True, capture_output=True)
         seconds_deform = time.perf_counter() - start
         report = json.loads(report_path.read_text())
