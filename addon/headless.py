@@ -9,9 +9,12 @@ file; without it a demo model is used (a UV sphere with face maps by nearest
 axis). Labels come from the objects (docs/design.md section 3), from --labels FILE, a
 text file with one label per face (-1..5), or with --labels auto from the
 automatic labeller (written to the objects, as the Auto Label operator does).
---subdivide K deforms a subdivided copy `<name> polycube` of each object. The
-figures of each deformed object are printed; the exit status is non-zero if any
-object could not be deformed or any output written, and then no output is written.
+--subdivide K deforms a subdivided copy `<name> polycube` of each object. --uv
+gives every deformed object a UV map "Polycube" from its polycube, --remesh N an
+all-quad object `<name> quads` of about N quads (the Polycube UV and Polycube
+Remesh operators). The figures of each deformed object are printed; the exit
+status is non-zero if any object could not be deformed or any output written, and
+then no output is written.
 
 Labels are axes of each object's own (local) coordinates; mesh files are imported
 without axis conversion so they keep the coordinates written in the file.
@@ -55,6 +58,8 @@ def _run(argv):
         most = package.native_options.MAX_REFINE_LEVELS
         if not 0 <= args.subdivide <= most:
             raise ValueError(f"--subdivide must be 0..{most}, got {args.subdivide}")
+        if args.remesh is not None and args.remesh < 6:
+            raise ValueError(f"--remesh takes a number of quads of at least 6, got {args.remesh}")
         targets = _load_input(args, package)
         if args.labels and args.labels != "auto":
             _apply_label_file(args.labels, targets, package)
@@ -96,11 +101,33 @@ def _run(argv):
               f"nothing written", file=sys.stderr)
         return 1
     try:
+        _use_polycubes(args, reports)
+    except RuntimeError as error:
+        print(f"polycube: {str(error).strip().removeprefix('Error: ')}; nothing written", file=sys.stderr)
+        return 1
+    try:
         _write_outputs(args, reports, package)
     except (ValueError, OSError) as error:
         print(f"polycube: {error}", file=sys.stderr)
         return 1
     return 0
+
+
+def _use_polycubes(args, reports):
+    """--uv and --remesh on every deformed object, through the operators a user clicks
+    (their messages, printed by Blender, give the figures); what each made goes into
+    its report. The UV map comes first, so the quads carry it."""
+    for name, report in reports.items():
+        obj = bpy.data.objects[name]
+        bpy.context.view_layer.objects.active = obj
+        if args.uv:
+            bpy.ops.object.polycube_uv(relax=args.uv != "polycube", merge=args.uv == "merged")
+            report["uv"] = {"map": obj.data.uv_layers.active.name, "kind": args.uv}
+        if args.remesh:
+            bpy.ops.object.polycube_remesh(mode='FACES', target_faces=args.remesh)
+            quads = bpy.context.active_object
+            report["remesh"] = {"object": quads.name, "faces": len(quads.data.polygons),
+                                "vertices": len(quads.data.vertices)}
 
 
 def _write_outputs(args, reports, package):
@@ -157,6 +184,12 @@ def _parse(argv, native_options):
                         help="deform a copy '<name> polycube' subdivided K times (0: the object itself)")
     parser.add_argument("--scheme", choices=("bilinear", "loop", "catmark"), default="bilinear",
                         help="subdivision scheme")
+    parser.add_argument("--uv", choices=("polycube", "conformal", "merged"),
+                        help="a UV map 'Polycube' on every deformed object, one island per chart: the "
+                             "polycube's own positions, conformal in the same islands, or conformal with "
+                             "neighbouring islands merged")
+    parser.add_argument("--remesh", type=int, metavar="FACES",
+                        help="an all-quad object '<name> quads' of about FACES quads from every polycube")
     parser.add_argument("--output", metavar="FILE.blend", help="where to save the result")
     parser.add_argument("--preview", metavar="FILE.png",
                         help="Workbench render of the input beside the polycube")

@@ -221,6 +221,38 @@ def test_fandisk_off_from_libcgal_demo():
     assert "6475 vertices, 12946 faces" in done.stdout and "flipped faces 0" in done.stdout
 
 
+def test_uv_and_remesh_of_every_deformed_object():
+    # fandisk (libcgal-demo) with automatic labels: the UV map comes first, so the
+    # quads carry it; both are saved with the .blend and named in the report.
+    out, js = os.path.join(TMP, "uses.blend"), os.path.join(TMP, "uses.json")
+    done = _headless("--input", os.path.join(MESHES, "fandisk.off"), "--labels", "auto", "--iterations", "200",
+                     "--uv", "merged", "--remesh", "1500", "--output", out, "--report", js)
+    assert done.returncode == 0, done.stderr
+    assert re.search(r"UV map 'Polycube', \d+ islands", done.stdout), done.stdout
+    assert re.search(r"'fandisk quads': \d+ quads, 38 irregular vertices", done.stdout), done.stdout
+    with open(js) as file:
+        report = json.load(file)["fandisk"]
+    assert report["uv"] == {"map": "Polycube", "kind": "merged"}
+    assert report["remesh"]["object"] == "fandisk quads" and abs(report["remesh"]["faces"] - 1500) < 150
+
+    saved = _saved_objects(out)
+    fandisk, quads = saved["fandisk"], saved["fandisk quads"]
+    assert fandisk.data.uv_layers.active.name == "Polycube"
+    sizes = np.empty(len(quads.data.polygons), dtype=np.int32)
+    quads.data.polygons.foreach_get("loop_total", sizes)
+    assert len(sizes) == report["remesh"]["faces"] and (sizes == 4).all()
+    assert "Polycube" in quads.data.uv_layers
+
+    # A polycube the remesh refuses (not exact) fails the run, and nothing is written.
+    refused_out = os.path.join(TMP, "refused.blend")
+    refused = _headless("--input", os.path.join(MESHES, "elephant.off"), "--iterations", "3", "--remesh", "500",
+                        "--output", refused_out)
+    _failing(refused, 1, "nothing written")
+    assert not os.path.exists(refused_out)
+    few = _headless("--remesh", "2")
+    _failing(few, 2, "--remesh takes a number of quads of at least 6")
+
+
 def test_labels_that_cannot_be_flattened_get_advice():
     # The elephant's nearest-axis labels: flattening would leave folds and crush a
     # sixth of it (the last refused attempt: 570 folds, 16%).
