@@ -120,26 +120,58 @@ void QualityMeasure::update_face_state(const Vertices& output, Eigen::Index f, F
 
 double QualityMeasure::fold_flags(const Vertices& output, std::vector<char>& collapsed, std::vector<char>& flipped,
                                   std::vector<double>* areas) const {
+  TriangleAreas measured;
+  const double scale2 = fold_flags(output, measured, collapsed, flipped);
+  if (areas) *areas = std::move(measured.area);
+  return scale2;
+}
+
+double QualityMeasure::fold_flags(const Vertices& output, TriangleAreas& areas, std::vector<char>& collapsed,
+                                  std::vector<char>& flipped) const {
   const Eigen::Index count = triangles_.rows();
-  const int threads = parallel_threads(count);
-  std::vector<double> area(count), along(count);  // along: doubled normal . label axis
+  std::vector<double>& area = areas.area;
+  std::vector<double>& along = areas.along;  // doubled normal . label axis
+  area.resize(count);
+  along.resize(count);
   double total = 0.0;
-#pragma omp parallel for num_threads(threads) reduction(+ : total)
+#pragma omp parallel for num_threads(parallel_threads(count)) reduction(+ : total)
   for (Eigen::Index f = 0; f < count; ++f) {
     const Eigen::Vector3d normal = doubled_normal(output, triangles_, f);
     area[f] = 0.5 * normal.norm();
     along[f] = normal.dot(label_axis(labels_[f]));
     total += area[f];
   }
+  return flags_from(areas, total, collapsed, flipped);
+}
+
+double QualityMeasure::fold_flags_moved(const Vertices& output, const std::vector<int>& moved, TriangleAreas& areas,
+                                        std::vector<char>& collapsed, std::vector<char>& flipped) const {
+  for (int f : moved) {
+    const Eigen::Vector3d normal = doubled_normal(output, triangles_, f);
+    areas.area[f] = 0.5 * normal.norm();
+    areas.along[f] = normal.dot(label_axis(labels_[f]));
+  }
+  // Summed as fold_flags() sums them, so the scale is the same bit for bit.
+  const Eigen::Index count = triangles_.rows();
+  const std::vector<double>& area = areas.area;
+  double total = 0.0;
+#pragma omp parallel for num_threads(parallel_threads(count)) reduction(+ : total)
+  for (Eigen::Index f = 0; f < count; ++f) total += area[f];
+  return flags_from(areas, total, collapsed, flipped);
+}
+
+double QualityMeasure::flags_from(const TriangleAreas& areas, double total, std::vector<char>& collapsed,
+                                  std::vector<char>& flipped) const {
+  const Eigen::Index count = triangles_.rows();
+  const std::vector<double>& area = areas.area;
   const double scale2 = input_total_ > 0.0 && total > 0.0 ? total / input_total_ : 1.0;
   collapsed.resize(count);
   flipped.resize(count);
-#pragma omp parallel for num_threads(threads)
+#pragma omp parallel for num_threads(parallel_threads(count))
   for (Eigen::Index f = 0; f < count; ++f) {
     collapsed[f] = area[f] <= kCollapsedAreaRatio * scale2 * input_area_[f] || area[f] == 0.0;
-    flipped[f] = !collapsed[f] && along[f] < 0.0;
+    flipped[f] = !collapsed[f] && areas.along[f] < 0.0;
   }
-  if (areas) *areas = std::move(area);
   return scale2;
 }
 
