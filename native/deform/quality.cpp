@@ -26,19 +26,8 @@ QualityMeasure::QualityMeasure(const Vertices& input, const Triangles& triangles
     input_area_[f] = 0.5 * doubled_normal(input, triangles, f).norm();
     input_total_ += input_area_[f];
   }
-  edges_.reserve(3 * static_cast<size_t>(triangles.rows()));
-  for (Eigen::Index f = 0; f < triangles.rows(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const int a = triangles(f, k), b = triangles(f, (k + 1) % 3);
-      if (a != b) edges_.emplace_back(std::min(a, b), std::max(a, b));
-    }
-  std::sort(edges_.begin(), edges_.end());
-  edges_.erase(std::unique(edges_.begin(), edges_.end()), edges_.end());
-  input_lengths_.resize(edges_.size());
-  for (size_t e = 0; e < edges_.size(); ++e)
-    input_lengths_[e] = (input.row(edges_[e].first) - input.row(edges_[e].second)).norm();
-
-  // Edges with exactly two triangles: sort (edge, triangle) and take the runs of two.
+  // One sort of (edge, triangle) gives both the edges, each once, and the
+  // runs of two that are the interior pairs.
   std::vector<std::tuple<int, int, int>> sides;
   sides.reserve(3 * static_cast<size_t>(triangles.rows()));
   for (Eigen::Index f = 0; f < triangles.rows(); ++f)
@@ -52,10 +41,14 @@ QualityMeasure::QualityMeasure(const Vertices& input, const Triangles& triangles
     while (j < sides.size() && std::get<0>(sides[j]) == std::get<0>(sides[i]) &&
            std::get<1>(sides[j]) == std::get<1>(sides[i]))
       ++j;
+    edges_.emplace_back(std::get<0>(sides[i]), std::get<1>(sides[i]));
     if (j - i == 2 && std::get<2>(sides[i]) != std::get<2>(sides[i + 1]))
       interior_pairs_.emplace_back(std::get<2>(sides[i]), std::get<2>(sides[i + 1]));
     i = j;
   }
+  input_lengths_.resize(edges_.size());
+  for (size_t e = 0; e < edges_.size(); ++e)
+    input_lengths_[e] = (input.row(edges_[e].first) - input.row(edges_[e].second)).norm();
   std::vector<char> degenerate(triangles.rows());
   for (Eigen::Index f = 0; f < triangles.rows(); ++f) degenerate[f] = input_area_[f] == 0.0;
   input_folded_edges_ = folded_edges(input, degenerate);
