@@ -151,10 +151,20 @@ std::vector<double> log_lengths_of(const QualityMeasure& q) {
   return logs;
 }
 
-// With `gradients`, each error's gradient by position too. `log_lengths`:
+// What the errors' gradients need of one evaluation of them: per edge the
+// factor of its vector (NaN where the edge is not counted), per triangle the
+// area error's derivative by its area A at fixed s^2, and each error's
+// derivative by s^2. Kept so that only a trial that is taken pays for its
+// gradients (about half of B0's trials are not).
+struct Slopes {
+  std::vector<double> edge, by_area;
+  std::array<double, 2> by_scale = {0.0, 0.0};
+};
+
+// With `slopes`, what smooth_gradients() needs too. `log_lengths`:
 // log_lengths_of(d.quality).
 Errors smooth_errors(const Deformation& d, const LeftOut& left_out, const std::vector<double>& log_lengths,
-                     const Vertices& x, std::array<Vertices, 2>* gradients = nullptr) {
+                     const Vertices& x, Slopes* slopes = nullptr) {
   const QualityMeasure& q = d.quality;
   const auto& edges = q.edges();
   const auto& lengths = q.input_lengths();
@@ -180,8 +190,7 @@ Errors smooth_errors(const Deformation& d, const LeftOut& left_out, const std::v
   Errors errors{0.0, 0.0};
   // Each error's derivative by s^2, which moves with every triangle's area.
   std::array<double, 2> by_scale = {0.0, 0.0};
-  if (gradients)
-    for (Vertices& g : *gradients) g.setZero(x.rows(), 3);
+  if (slopes) slopes->edge.assign(edges.size(), std::numeric_limits<double>::quiet_NaN());
   for (size_t e = 0; e < edges.size(); ++e) {
     if (lengths[e] <= 0.0) continue;
     const auto [i, j] = edges[e];
@@ -192,13 +201,10 @@ Errors smooth_errors(const Deformation& d, const LeftOut& left_out, const std::v
     if (left_out.edges[e]) continue;
     if (!(length2 > 0.0)) return {};
     const double u = 0.5 * std::log(length2) - log_scale - log_lengths[e];
-    const double rho_u = rho(u), slope = u / rho_u;  // rho(u), rho_slope(u)
+    const double rho_u = rho(u), slope = u / rho_u;  // rho(u) and its slope
     errors.edge += rho_u;
     by_scale[0] -= slope / (2.0 * s2 * edge_count);
-    if (!gradients) continue;
-    const Eigen::RowVector3d g = (slope / (length2 * edge_count)) * v;
-    (*gradients)[0].row(i) += g;
-    (*gradients)[0].row(j) -= g;
+    if (slopes) slopes->edge[e] = slope / (length2 * edge_count);
   }
   std::vector<double> by_area(count, 0.0);  // the area error's derivative by A at fixed s^2
   for (Eigen::Index t = 0; t < count; ++t) {
@@ -208,7 +214,7 @@ Errors smooth_errors(const Deformation& d, const LeftOut& left_out, const std::v
     if (left_out.triangles[t]) continue;
     if (!(area[t] > 0.0)) return {};
     const double r = std::log(area[t] / (s2 * areas[t]));
-    const double rho_r = rho(r), slope = r / rho_r;  // rho(r), rho_slope(r)
+    const double rho_r = rho(r), slope = r / rho_r;  // rho(r) and its slope
     errors.area += rho_r;
     by_scale[1] -= slope / (s2 * triangle_count);
     by_area[t] = slope / (area[t] * triangle_count);
@@ -217,21 +223,43 @@ Errors smooth_errors(const Deformation& d, const LeftOut& left_out, const std::v
   errors.area /= triangle_count;
   errors.figure_edge = measured_edges > 0 ? figure_edge / measured_edges : 0.0;
   errors.figure_area = measured_triangles > 0 ? figure_area / measured_triangles : 0.0;
-  if (!gradients) return errors;
-  for (Eigen::Index t = 0; t < count; ++t) {
+  if (slopes) {
+    slopes->by_area = std::move(by_area);
+    slopes->by_scale = by_scale;
+  }
+  return errors;
+}
+
+// Each smooth error's gradient by position at `x`, from the `slopes` of
+// smooth_errors() at the same `x`.
+void smooth_gradients(const Deformation& d, const Vertices& x, const Slopes& slopes,
+                      std::array<Vertices, 2>& gradients) {
+  const auto& edges = d.quality.edges();
+  const double input_total = d.quality.input_total_area();
+  const Triangles& triangles = d.triangles();
+  for (Vertices& g : gradients) g.setZero(x.rows(), 3);
+  for (size_t e = 0; e < edges.size(); ++e) {
+    if (std::isnan(slopes.edge[e])) continue;
+    const auto [i, j] = edges[e];
+    const Eigen::RowVector3d v = x.row(i) - x.row(j);
+    const Eigen::RowVector3d g = slopes.edge[e] * v;
+    gradients[0].row(i) += g;
+    gradients[0].row(j) -= g;
+  }
+  for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
     // A's gradient: half the opposite edge turned about the axis.
     const Eigen::Vector3d axis = label_axis(d.triangle_labels[t]);
     const int a = triangles(t, 0), b = triangles(t, 1), c = triangles(t, 2);
     const Eigen::Vector3d pa = x.row(a), pb = x.row(b), pc = x.row(c);
-    const std::array<double, 2> by = {by_scale[0] / input_total, by_area[t] + by_scale[1] / input_total};
+    const std::array<double, 2> by = {slopes.by_scale[0] / input_total,
+                                      slopes.by_area[t] + slopes.by_scale[1] / input_total};
     for (int k = 0; k < 2; ++k) {
       const double f = 0.5 * by[k];
-      (*gradients)[k].row(a) += f * (pb - pc).cross(axis).transpose();
-      (*gradients)[k].row(b) += f * (pc - pa).cross(axis).transpose();
-      (*gradients)[k].row(c) += f * (pa - pb).cross(axis).transpose();
+      gradients[k].row(a) += f * (pb - pc).cross(axis).transpose();
+      gradients[k].row(b) += f * (pc - pa).cross(axis).transpose();
+      gradients[k].row(c) += f * (pa - pb).cross(axis).transpose();
     }
   }
-  return errors;
 }
 
 // Vertices on an edge of one triangle: held where they are. An open
@@ -337,16 +365,18 @@ int polish_stage(RobustRun& run) {
   const std::vector<char> held = open_boundary_vertices(d.n, d.triangles());
   double step_length = 0.0;
   std::vector<double> sums;
-  std::array<Vertices, 2> gradients, trial_gradients;
+  std::array<Vertices, 2> gradients;
+  Slopes slopes;
   // The triangles' areas where the step starts: the run's, until a step moves them.
   std::vector<double> areas_now = run.state.area;
   std::vector<char> unused_collapsed, unused_flipped;
   // Steps follow the smooth errors; what is returned is the state, after
   // any step, with the lowest figures of those in which neither grew.
-  Errors errors = smooth_errors(d, left_out, log_lengths, d.x, &gradients), best = errors;
+  Errors errors = smooth_errors(d, left_out, log_lengths, d.x, &slopes), best = errors;
   // No smooth errors to lower (no area along the axes at all, or an edge the
   // run squeezed to nothing besides its collapsed ones): nothing to polish.
   if (!std::isfinite(errors.edge + errors.area)) return 0;
+  smooth_gradients(d, d.x, slopes, gradients);
   const Vertices start_x = d.x;
   Vertices best_x = d.x;
   int steps = 0, best_steps = 0;
@@ -365,15 +395,15 @@ int polish_stage(RobustRun& run) {
     bool moved = false;
     for (int halving = 0; halving <= 2 * kMaxHalvings; ++halving) {
       Vertices next = controlled_blend(d, planes, d.x + step_length * direction, collapsed, bounds, held, areas_now);
-      const Errors next_errors = smooth_errors(d, left_out, log_lengths, next, &trial_gradients);
+      const Errors next_errors = smooth_errors(d, left_out, log_lengths, next, &slopes);
       if (!next_errors.better_than(errors)) {
         step_length *= 0.5;
         continue;
       }
+      smooth_gradients(d, next, slopes, gradients);
       // Placing moves each component as a whole: the errors and their gradients stay.
       d.x = place_components(next, next, d.parts, d.centroids);
       errors = next_errors;
-      std::swap(gradients, trial_gradients);
       moved = true;
       break;
     }
