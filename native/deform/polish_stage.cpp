@@ -52,16 +52,35 @@ Vertices controlled_blend(const Deformation& d, const ChartPlanes& planes, const
       if (held[v]) share[axis][unknown[v]] = 0.0;
   }
   std::vector<char> collapsed, flipped;
-  std::vector<double> areas;
+  // After the first round only the triangles around the corners whose
+  // share was halved are measured again (most of the mesh stands where the
+  // last round put it).
+  TriangleAreas measured;
+  const std::vector<double>& areas = measured.area;
+  std::vector<char> vertex_moved(d.n, 0);
+  std::vector<int> moved;
+  Vertices next = d.x;
   const std::vector<double>& input_areas = d.quality.input_areas();
   const int max_rounds = 4 * (kMaxHalvings + 1);
   for (int round = 0; round < max_rounds; ++round) {
-    Vertices next = d.x;
-    for (int axis = 0; axis < 3; ++axis) {
-      const std::vector<int>& unknown = planes.unknowns(axis);
-      for (int v = 0; v < d.n; ++v) next(v, axis) += share[axis][unknown[v]] * step(v, axis);
+    for (int v = 0; v < d.n; ++v) {
+      bool changed = false;
+      for (int axis = 0; axis < 3; ++axis) {
+        const double value = d.x(v, axis) + share[axis][planes.unknowns(axis)[v]] * step(v, axis);
+        changed = changed || value != next(v, axis);
+        next(v, axis) = value;
+      }
+      vertex_moved[v] = changed;
     }
-    d.quality.fold_flags(next, collapsed, flipped, &areas);
+    if (round == 0) {
+      d.quality.fold_flags(next, measured, collapsed, flipped);
+    } else {
+      moved.clear();
+      for (Eigen::Index t = 0; t < triangles.rows(); ++t)
+        if (vertex_moved[triangles(t, 0)] || vertex_moved[triangles(t, 1)] || vertex_moved[triangles(t, 2)])
+          moved.push_back(static_cast<int>(t));
+      d.quality.fold_flags_moved(next, moved, measured, collapsed, flipped);
+    }
     bool blocked = false;
     for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
       // Turned over, or its area further out of bounds than it is now (a
@@ -101,8 +120,7 @@ Vertices controlled_blend(const Deformation& d, const ChartPlanes& planes, const
 // counted.
 constexpr double kSmoothing = 1e-3;
 
-double rho(double u) { return std::sqrt(u * u + kSmoothing * kSmoothing); }
-double rho_slope(double u) { return u / rho(u); }
+double rho(double u) { return std::sqrt(u * u + kSmoothing * kSmoothing); }  // its slope: u / rho(u)
 
 // The smooth errors, and the figures' own (quality.h), measured in the same pass.
 struct Errors {
@@ -123,9 +141,30 @@ struct LeftOut {
   std::vector<char> triangles, edges;
 };
 
-// With `gradients`, each error's gradient by position too.
-Errors smooth_errors(const Deformation& d, const LeftOut& left_out, const Vertices& x,
-                     std::array<Vertices, 2>* gradients = nullptr) {
+// The logarithms of the input's edge lengths, taken once for every
+// evaluation (0 for an edge of no length, which is not counted).
+std::vector<double> log_lengths_of(const QualityMeasure& q) {
+  const std::vector<double>& lengths = q.input_lengths();
+  std::vector<double> logs(lengths.size(), 0.0);
+  for (size_t e = 0; e < lengths.size(); ++e)
+    if (lengths[e] > 0.0) logs[e] = std::log(lengths[e]);
+  return logs;
+}
+
+// What the errors' gradients need of one evaluation of them: per edge the
+// factor of its vector (NaN where the edge is not counted), per triangle the
+// area error's derivative by its area A at fixed s^2, and each error's
+// derivative by s^2. Kept so that only a trial that is taken pays for its
+// gradients (about half of B0's trials are not).
+struct Slopes {
+  std::vector<double> edge, by_area;
+  std::array<double, 2> by_scale = {0.0, 0.0};
+};
+
+// With `slopes`, what smooth_gradients() needs too. `log_lengths`:
+// log_lengths_of(d.quality).
+Errors smooth_errors(const Deformation& d, const LeftOut& left_out, const std::vector<double>& log_lengths,
+                     const Vertices& x, Slopes* slopes = nullptr) {
   const QualityMeasure& q = d.quality;
   const auto& edges = q.edges();
   const auto& lengths = q.input_lengths();
@@ -151,8 +190,7 @@ Errors smooth_errors(const Deformation& d, const LeftOut& left_out, const Vertic
   Errors errors{0.0, 0.0};
   // Each error's derivative by s^2, which moves with every triangle's area.
   std::array<double, 2> by_scale = {0.0, 0.0};
-  if (gradients)
-    for (Vertices& g : *gradients) g.setZero(x.rows(), 3);
+  if (slopes) slopes->edge.assign(edges.size(), std::numeric_limits<double>::quiet_NaN());
   for (size_t e = 0; e < edges.size(); ++e) {
     if (lengths[e] <= 0.0) continue;
     const auto [i, j] = edges[e];
@@ -162,13 +200,11 @@ Errors smooth_errors(const Deformation& d, const LeftOut& left_out, const Vertic
     ++measured_edges;
     if (left_out.edges[e]) continue;
     if (!(length2 > 0.0)) return {};
-    const double u = 0.5 * std::log(length2) - log_scale - std::log(lengths[e]);
-    errors.edge += rho(u);
-    by_scale[0] -= rho_slope(u) / (2.0 * s2 * edge_count);
-    if (!gradients) continue;
-    const Eigen::RowVector3d g = (rho_slope(u) / (length2 * edge_count)) * v;
-    (*gradients)[0].row(i) += g;
-    (*gradients)[0].row(j) -= g;
+    const double u = 0.5 * std::log(length2) - log_scale - log_lengths[e];
+    const double rho_u = rho(u), slope = u / rho_u;  // rho(u) and its slope
+    errors.edge += rho_u;
+    by_scale[0] -= slope / (2.0 * s2 * edge_count);
+    if (slopes) slopes->edge[e] = slope / (length2 * edge_count);
   }
   std::vector<double> by_area(count, 0.0);  // the area error's derivative by A at fixed s^2
   for (Eigen::Index t = 0; t < count; ++t) {
@@ -178,29 +214,52 @@ Errors smooth_errors(const Deformation& d, const LeftOut& left_out, const Vertic
     if (left_out.triangles[t]) continue;
     if (!(area[t] > 0.0)) return {};
     const double r = std::log(area[t] / (s2 * areas[t]));
-    errors.area += rho(r);
-    by_scale[1] -= rho_slope(r) / (s2 * triangle_count);
-    by_area[t] = rho_slope(r) / (area[t] * triangle_count);
+    const double rho_r = rho(r), slope = r / rho_r;  // rho(r) and its slope
+    errors.area += rho_r;
+    by_scale[1] -= slope / (s2 * triangle_count);
+    by_area[t] = slope / (area[t] * triangle_count);
   }
   errors.edge /= edge_count;
   errors.area /= triangle_count;
   errors.figure_edge = measured_edges > 0 ? figure_edge / measured_edges : 0.0;
   errors.figure_area = measured_triangles > 0 ? figure_area / measured_triangles : 0.0;
-  if (!gradients) return errors;
-  for (Eigen::Index t = 0; t < count; ++t) {
+  if (slopes) {
+    slopes->by_area = std::move(by_area);
+    slopes->by_scale = by_scale;
+  }
+  return errors;
+}
+
+// Each smooth error's gradient by position at `x`, from the `slopes` of
+// smooth_errors() at the same `x`.
+void smooth_gradients(const Deformation& d, const Vertices& x, const Slopes& slopes,
+                      std::array<Vertices, 2>& gradients) {
+  const auto& edges = d.quality.edges();
+  const double input_total = d.quality.input_total_area();
+  const Triangles& triangles = d.triangles();
+  for (Vertices& g : gradients) g.setZero(x.rows(), 3);
+  for (size_t e = 0; e < edges.size(); ++e) {
+    if (std::isnan(slopes.edge[e])) continue;
+    const auto [i, j] = edges[e];
+    const Eigen::RowVector3d v = x.row(i) - x.row(j);
+    const Eigen::RowVector3d g = slopes.edge[e] * v;
+    gradients[0].row(i) += g;
+    gradients[0].row(j) -= g;
+  }
+  for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
     // A's gradient: half the opposite edge turned about the axis.
     const Eigen::Vector3d axis = label_axis(d.triangle_labels[t]);
     const int a = triangles(t, 0), b = triangles(t, 1), c = triangles(t, 2);
     const Eigen::Vector3d pa = x.row(a), pb = x.row(b), pc = x.row(c);
-    const std::array<double, 2> by = {by_scale[0] / input_total, by_area[t] + by_scale[1] / input_total};
+    const std::array<double, 2> by = {slopes.by_scale[0] / input_total,
+                                      slopes.by_area[t] + slopes.by_scale[1] / input_total};
     for (int k = 0; k < 2; ++k) {
       const double f = 0.5 * by[k];
-      (*gradients)[k].row(a) += f * (pb - pc).cross(axis).transpose();
-      (*gradients)[k].row(b) += f * (pc - pa).cross(axis).transpose();
-      (*gradients)[k].row(c) += f * (pa - pb).cross(axis).transpose();
+      gradients[k].row(a) += f * (pb - pc).cross(axis).transpose();
+      gradients[k].row(b) += f * (pc - pa).cross(axis).transpose();
+      gradients[k].row(c) += f * (pa - pb).cross(axis).transpose();
     }
   }
-  return errors;
 }
 
 // Vertices on an edge of one triangle: held where they are. An open
@@ -243,20 +302,19 @@ void keep_collapsed_on_their_lines(const RobustRun& run, ChartPlanes& planes) {
 }
 
 // The bounds on every triangle's area (header): the run's largest ratio and
-// half its smallest, or kPolishStretch either way.
-AreaBounds area_bounds(const Deformation& d) {
+// half its smallest, or kPolishStretch either way; from the run's face
+// states, whose areas, collapses and scale are fold_flags' (quality.h).
+AreaBounds area_bounds(const Deformation& d, const FaceStates& state) {
   AreaBounds bounds;
-  std::vector<char> collapsed, flipped;
-  std::vector<double> areas;
-  bounds.scale2 = d.quality.fold_flags(d.x, collapsed, flipped, &areas);
+  bounds.scale2 = state.scale2;
   bounds.smallest = 1.0 / kPolishStretch;
   bounds.largest = kPolishStretch;
   const std::vector<double>& input_areas = d.quality.input_areas();
-  for (size_t t = 0; t < areas.size(); ++t) {
+  for (size_t t = 0; t < state.area.size(); ++t) {
     if (!(input_areas[t] > 0.0)) continue;
-    const double ratio = areas[t] / (bounds.scale2 * input_areas[t]);
+    const double ratio = state.area[t] / (bounds.scale2 * input_areas[t]);
     bounds.largest = std::max(bounds.largest, ratio);
-    if (!collapsed[t]) bounds.smallest = std::min(bounds.smallest, 0.5 * ratio);
+    if (!state.collapsed[t]) bounds.smallest = std::min(bounds.smallest, 0.5 * ratio);
   }
   // A triangle collapses below kCollapsedAreaRatio at the current scale,
   // which a step moves: twice that keeps every triangle the run left open
@@ -300,19 +358,25 @@ int polish_stage(RobustRun& run) {
   keep_collapsed_on_their_lines(run, planes);
   planes.factorize(d.laplacian.matrix());
   const Figures start = d.quality.measure(d.x, run.state);
-  const AreaBounds bounds = area_bounds(d);
+  const AreaBounds bounds = area_bounds(d, run.state);
   const LeftOut left_out = left_out_of(run);
+  const std::vector<double> log_lengths = log_lengths_of(d.quality);
   const std::vector<char>& collapsed = run.state.collapsed;
   const std::vector<char> held = open_boundary_vertices(d.n, d.triangles());
   double step_length = 0.0;
   std::vector<double> sums;
-  std::array<Vertices, 2> gradients, trial_gradients;
+  std::array<Vertices, 2> gradients;
+  Slopes slopes;
+  // The triangles' areas where the step starts: the run's, until a step moves them.
+  std::vector<double> areas_now = run.state.area;
+  std::vector<char> unused_collapsed, unused_flipped;
   // Steps follow the smooth errors; what is returned is the state, after
   // any step, with the lowest figures of those in which neither grew.
-  Errors errors = smooth_errors(d, left_out, d.x, &gradients), best = errors;
+  Errors errors = smooth_errors(d, left_out, log_lengths, d.x, &slopes), best = errors;
   // No smooth errors to lower (no area along the axes at all, or an edge the
   // run squeezed to nothing besides its collapsed ones): nothing to polish.
   if (!std::isfinite(errors.edge + errors.area)) return 0;
+  smooth_gradients(d, d.x, slopes, gradients);
   const Vertices start_x = d.x;
   Vertices best_x = d.x;
   int steps = 0, best_steps = 0;
@@ -327,21 +391,19 @@ int polish_stage(RobustRun& run) {
     if (step_length == 0.0) step_length = kPolishFirstStep * run.diagonal / largest;
     // The longest step, halving from twice the last one kept, along which
     // neither smooth error grows.
-    std::vector<char> unused_collapsed, unused_flipped;
-    std::vector<double> areas_now;
-    d.quality.fold_flags(d.x, unused_collapsed, unused_flipped, &areas_now);
+    if (steps > 0) d.quality.fold_flags(d.x, unused_collapsed, unused_flipped, &areas_now);
     bool moved = false;
     for (int halving = 0; halving <= 2 * kMaxHalvings; ++halving) {
       Vertices next = controlled_blend(d, planes, d.x + step_length * direction, collapsed, bounds, held, areas_now);
-      const Errors next_errors = smooth_errors(d, left_out, next, &trial_gradients);
+      const Errors next_errors = smooth_errors(d, left_out, log_lengths, next, &slopes);
       if (!next_errors.better_than(errors)) {
         step_length *= 0.5;
         continue;
       }
+      smooth_gradients(d, next, slopes, gradients);
       // Placing moves each component as a whole: the errors and their gradients stay.
       d.x = place_components(next, next, d.parts, d.centroids);
       errors = next_errors;
-      std::swap(gradients, trial_gradients);
       moved = true;
       break;
     }

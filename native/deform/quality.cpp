@@ -26,19 +26,8 @@ QualityMeasure::QualityMeasure(const Vertices& input, const Triangles& triangles
     input_area_[f] = 0.5 * doubled_normal(input, triangles, f).norm();
     input_total_ += input_area_[f];
   }
-  edges_.reserve(3 * static_cast<size_t>(triangles.rows()));
-  for (Eigen::Index f = 0; f < triangles.rows(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const int a = triangles(f, k), b = triangles(f, (k + 1) % 3);
-      if (a != b) edges_.emplace_back(std::min(a, b), std::max(a, b));
-    }
-  std::sort(edges_.begin(), edges_.end());
-  edges_.erase(std::unique(edges_.begin(), edges_.end()), edges_.end());
-  input_lengths_.resize(edges_.size());
-  for (size_t e = 0; e < edges_.size(); ++e)
-    input_lengths_[e] = (input.row(edges_[e].first) - input.row(edges_[e].second)).norm();
-
-  // Edges with exactly two triangles: sort (edge, triangle) and take the runs of two.
+  // One sort of (edge, triangle) gives both the edges, each once, and the
+  // runs of two that are the interior pairs.
   std::vector<std::tuple<int, int, int>> sides;
   sides.reserve(3 * static_cast<size_t>(triangles.rows()));
   for (Eigen::Index f = 0; f < triangles.rows(); ++f)
@@ -52,10 +41,14 @@ QualityMeasure::QualityMeasure(const Vertices& input, const Triangles& triangles
     while (j < sides.size() && std::get<0>(sides[j]) == std::get<0>(sides[i]) &&
            std::get<1>(sides[j]) == std::get<1>(sides[i]))
       ++j;
+    edges_.emplace_back(std::get<0>(sides[i]), std::get<1>(sides[i]));
     if (j - i == 2 && std::get<2>(sides[i]) != std::get<2>(sides[i + 1]))
       interior_pairs_.emplace_back(std::get<2>(sides[i]), std::get<2>(sides[i + 1]));
     i = j;
   }
+  input_lengths_.resize(edges_.size());
+  for (size_t e = 0; e < edges_.size(); ++e)
+    input_lengths_[e] = (input.row(edges_[e].first) - input.row(edges_[e].second)).norm();
   std::vector<char> degenerate(triangles.rows());
   for (Eigen::Index f = 0; f < triangles.rows(); ++f) degenerate[f] = input_area_[f] == 0.0;
   input_folded_edges_ = folded_edges(input, degenerate);
@@ -120,26 +113,58 @@ void QualityMeasure::update_face_state(const Vertices& output, Eigen::Index f, F
 
 double QualityMeasure::fold_flags(const Vertices& output, std::vector<char>& collapsed, std::vector<char>& flipped,
                                   std::vector<double>* areas) const {
+  TriangleAreas measured;
+  const double scale2 = fold_flags(output, measured, collapsed, flipped);
+  if (areas) *areas = std::move(measured.area);
+  return scale2;
+}
+
+double QualityMeasure::fold_flags(const Vertices& output, TriangleAreas& areas, std::vector<char>& collapsed,
+                                  std::vector<char>& flipped) const {
   const Eigen::Index count = triangles_.rows();
-  const int threads = parallel_threads(count);
-  std::vector<double> area(count), along(count);  // along: doubled normal . label axis
+  std::vector<double>& area = areas.area;
+  std::vector<double>& along = areas.along;  // doubled normal . label axis
+  area.resize(count);
+  along.resize(count);
   double total = 0.0;
-#pragma omp parallel for num_threads(threads) reduction(+ : total)
+#pragma omp parallel for num_threads(parallel_threads(count)) reduction(+ : total)
   for (Eigen::Index f = 0; f < count; ++f) {
     const Eigen::Vector3d normal = doubled_normal(output, triangles_, f);
     area[f] = 0.5 * normal.norm();
     along[f] = normal.dot(label_axis(labels_[f]));
     total += area[f];
   }
+  return flags_from(areas, total, collapsed, flipped);
+}
+
+double QualityMeasure::fold_flags_moved(const Vertices& output, const std::vector<int>& moved, TriangleAreas& areas,
+                                        std::vector<char>& collapsed, std::vector<char>& flipped) const {
+  for (int f : moved) {
+    const Eigen::Vector3d normal = doubled_normal(output, triangles_, f);
+    areas.area[f] = 0.5 * normal.norm();
+    areas.along[f] = normal.dot(label_axis(labels_[f]));
+  }
+  // Summed as fold_flags() sums them, so the scale is the same bit for bit.
+  const Eigen::Index count = triangles_.rows();
+  const std::vector<double>& area = areas.area;
+  double total = 0.0;
+#pragma omp parallel for num_threads(parallel_threads(count)) reduction(+ : total)
+  for (Eigen::Index f = 0; f < count; ++f) total += area[f];
+  return flags_from(areas, total, collapsed, flipped);
+}
+
+double QualityMeasure::flags_from(const TriangleAreas& areas, double total, std::vector<char>& collapsed,
+                                  std::vector<char>& flipped) const {
+  const Eigen::Index count = triangles_.rows();
+  const std::vector<double>& area = areas.area;
   const double scale2 = input_total_ > 0.0 && total > 0.0 ? total / input_total_ : 1.0;
   collapsed.resize(count);
   flipped.resize(count);
-#pragma omp parallel for num_threads(threads)
+#pragma omp parallel for num_threads(parallel_threads(count))
   for (Eigen::Index f = 0; f < count; ++f) {
     collapsed[f] = area[f] <= kCollapsedAreaRatio * scale2 * input_area_[f] || area[f] == 0.0;
-    flipped[f] = !collapsed[f] && along[f] < 0.0;
+    flipped[f] = !collapsed[f] && areas.along[f] < 0.0;
   }
-  if (areas) *areas = std::move(area);
   return scale2;
 }
 

@@ -57,6 +57,12 @@ struct FaceStates {
   double max_deviation_deg = 0.0;
 };
 
+// Per triangle, its area and its doubled normal along its label's axis:
+// what QualityMeasure::fold_flags() derives its flags from.
+struct TriangleAreas {
+  std::vector<double> area, along;
+};
+
 // Keeps what does not change between iterations (input areas, the edge list
 // and input lengths) so each measurement costs one pass over the mesh.
 class QualityMeasure {
@@ -78,6 +84,17 @@ class QualityMeasure {
   // with `areas`, each triangle's area too. Returns the scale s^2.
   double fold_flags(const Vertices& output, std::vector<char>& collapsed, std::vector<char>& flipped,
                     std::vector<double>* areas = nullptr) const;
+  // The same, keeping in `areas` what the flags follow from, so that a
+  // later trial that moves a few corners measures only the triangles
+  // around them (fold_flags_moved): the polish's step control halves the
+  // steps of a few unknowns per round (polish_stage.h).
+  double fold_flags(const Vertices& output, TriangleAreas& areas, std::vector<char>& collapsed,
+                    std::vector<char>& flipped) const;
+  // fold_flags() of `output`, whose triangles other than `moved` have the
+  // corners `areas` was measured at: the same flags, scale and areas bit
+  // for bit, at the cost of `moved` and one sum.
+  double fold_flags_moved(const Vertices& output, const std::vector<int>& moved, TriangleAreas& areas,
+                          std::vector<char>& collapsed, std::vector<char>& flipped) const;
   // Without `errors`, the edge and area error means and the largest area
   // ratio are left at 0: the stopping rule needs only the normal figures,
   // and the edge pass is the costliest part.
@@ -114,6 +131,9 @@ class QualityMeasure {
   int input_folded_edges_ = 0;
 
   int folded_edges(const Vertices& output, const std::vector<char>& collapsed) const;
+  // fold_flags' flags from the areas, given their sum; returns the scale.
+  double flags_from(const TriangleAreas& areas, double total, std::vector<char>& collapsed,
+                    std::vector<char>& flipped) const;
 };
 
 }  // namespace polycube
