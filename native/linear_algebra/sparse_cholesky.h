@@ -1,5 +1,5 @@
 // The sparse factorisation behind every solve: Eigen's simplicial LDLT for
-// small systems, CHOLMOD's supernodal Cholesky (BLAS level 3, both cores)
+// small systems, CHOLMOD's supernodal Cholesky (BLAS level 3, one thread: supernodal_factor.cpp)
 // for large ones, where it factorises several times faster (see `make bench`),
 // from a plugin loaded when the first large system comes (supernodal_factor.h).
 //

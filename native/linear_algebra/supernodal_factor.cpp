@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cstdint>
+#include <cstdlib>
 #include <mutex>
 #include <string>
 
@@ -44,6 +45,22 @@ std::string own_file() {
   return search.file;
 }
 
+// OpenBLAS (Debian's is built with pthreads) runs its level-3 calls on one
+// thread per core, and a thread waiting for the others spins on sched_yield.
+// On two cores shared with other work, the other thread is often not
+// running: armadillo refined 16 times spent a third of its time in the
+// kernel's scheduler (docs/design.md section 2.6, "Cost"). One thread, unless
+// the user asked for more (OPENBLAS_NUM_THREADS, GOTO_NUM_THREADS,
+// OMP_NUM_THREADS, which OpenBLAS reads itself). Looked up through the
+// plugin's handle: its libraries are not in the process's namespace, and a
+// BLAS other than OpenBLAS has no such function.
+void single_threaded_blas(void* handle) {
+  for (const char* variable : {"OPENBLAS_NUM_THREADS", "GOTO_NUM_THREADS", "OMP_NUM_THREADS"})
+    if (std::getenv(variable)) return;
+  using SetThreads = void (*)(int);
+  if (auto set_threads = reinterpret_cast<SetThreads>(dlsym(handle, "openblas_set_num_threads"))) set_threads(1);
+}
+
 NewFactor load_plugin() {
   const std::string file = own_file();
   const size_t slash = file.rfind('/');
@@ -53,6 +70,7 @@ NewFactor load_plugin() {
   // global namespace (Blender has its own libraries).
   void* handle = dlopen(plugin.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (!handle) return nullptr;
+  single_threaded_blas(handle);
   return reinterpret_cast<NewFactor>(dlsym(handle, "polycube_new_supernodal_factor"));
 }
 

@@ -1,6 +1,8 @@
+#include <dlfcn.h>
 #include <gtest/gtest.h>
 
 #include <Eigen/SparseCholesky>
+#include <cstdlib>
 
 #include "linear_algebra/laplacian.h"
 #include "linear_algebra/sparse_cholesky.h"
@@ -29,6 +31,22 @@ double relative_residual(const SparseMatrix& a, const Eigen::MatrixX3d& x, const
 TEST(SparseCholesky, TheCholmodPluginLoads) {
   EXPECT_TRUE(supernodal_available());
   EXPECT_NE(make_supernodal_factor(), nullptr);
+}
+
+// The plugin's OpenBLAS runs on one thread unless the environment asks for
+// more (supernodal_factor.cpp): its waiting threads spin on a shared machine.
+TEST(SparseCholesky, ThePluginsOpenBlasRunsOnOneThread) {
+  for (const char* variable : {"OPENBLAS_NUM_THREADS", "GOTO_NUM_THREADS", "OMP_NUM_THREADS"})
+    if (std::getenv(variable)) GTEST_SKIP() << variable << " is set";
+  ASSERT_TRUE(supernodal_available());
+  // Loaded by the plugin, so RTLD_NOLOAD finds it without loading another.
+  void* blas = dlopen("libopenblas.so.0", RTLD_NOW | RTLD_NOLOAD);
+  if (!blas) GTEST_SKIP() << "the plugin's BLAS is not OpenBLAS";
+  using GetThreads = int (*)();
+  const auto get_threads = reinterpret_cast<GetThreads>(dlsym(blas, "openblas_get_num_threads"));
+  ASSERT_NE(get_threads, nullptr);
+  EXPECT_EQ(get_threads(), 1);
+  dlclose(blas);
 }
 #endif
 
