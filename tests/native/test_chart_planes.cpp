@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 #include <fstream>
+#include <memory>
 #include <set>
 
 #include "deform/chart_planes.h"
@@ -147,26 +148,26 @@ TEST(ChartPlanes, SameUnknownsShareTheRunsFactors) {
   ChartPlanes fresh(n, s.triangles, s.labels);
   fresh.collapse(0, other);
   fresh.factorize(L);
-  ChartPlanes polish(n, s.triangles, s.labels);
-  polish.collapse(0, other);
-  polish.share_factors(run);
-  polish.factorize(L);
-  EXPECT_EQ(polish.factorizations(), 0);
-  EXPECT_EQ(polish.solve(L * s.x), fresh.solve(L * s.x));
-  ChartPlanes charts_only(n, s.triangles, s.labels);  // `other` without the collapse
-  charts_only.share_factors(run);
-  charts_only.factorize(L);
-  EXPECT_EQ(charts_only.factorizations(), 1);
+  // New planes on the labels, with or without the run's collapse, sharing its factors.
+  auto sharing = [&](bool collapsed) {
+    auto planes = std::make_unique<ChartPlanes>(n, s.triangles, s.labels);
+    if (collapsed) planes->collapse(0, other);
+    planes->share_factors(run);
+    planes->factorize(L);
+    return planes;
+  };
+  const auto polish = sharing(true);
+  EXPECT_EQ(polish->factorizations(), 0);
+  EXPECT_EQ(polish->solve(L * s.x), fresh.solve(L * s.x));
+  const auto charts_only = sharing(false);  // `other` without the collapse
+  EXPECT_EQ(charts_only->factorizations(), 1);
   ChartPlanes all(n, s.triangles, s.labels);
   all.factorize(L);
-  EXPECT_EQ(charts_only.solve(L * s.x), all.solve(L * s.x));
+  EXPECT_EQ(charts_only->solve(L * s.x), all.solve(L * s.x));
   run.collapse(1, (s.labels[1] / 2 + 2) % 3);  // a collapse not yet factorised: that axis' factor is stale
-  ChartPlanes stale(n, s.triangles, s.labels);
-  stale.collapse(0, other);
-  stale.share_factors(run);
-  stale.factorize(L);
-  EXPECT_EQ(stale.factorizations(), 1);
-  EXPECT_EQ(stale.solve(L * s.x), fresh.solve(L * s.x));
+  const auto stale = sharing(true);
+  EXPECT_EQ(stale->factorizations(), 1);
+  EXPECT_EQ(stale->solve(L * s.x), fresh.solve(L * s.x));
 }
 
 // Each axis' system P^T L P is built without a triplet list (chart_planes.cpp);
