@@ -260,6 +260,7 @@ void polish(const PolygonMesh& mesh, const std::vector<int>& labels, const Defor
     d.x = result.positions;
     d.result = DeformResult();
     d.factorization.release();  // restored by conclude() for the reference timings alone
+    d.acceptable_x = Vertices();  // the run's fallback, of no use to the polish
     run = std::make_unique<RobustRun>(d, Assembled{});
     factored = std::move(finished->planes);
   } else {
