@@ -33,6 +33,32 @@ void ChartPlanes::use_chart_factors(const ChartPlanes& same_charts) {
   }
 }
 
+void ChartPlanes::share_factors(const ChartPlanes& other) {
+  std::vector<int> of_root, unknown;
+  for (int axis = 0; axis < 3; ++axis) {
+    if (other.changed_[axis] || !other.cholesky_[axis]) continue;
+    const int n = sets_[axis].size();
+    if (n != static_cast<int>(other.unknown_[axis].size())) continue;
+    number_unknowns(axis, n, of_root, unknown);
+    if (unknown != other.unknown_[axis]) continue;
+    unknown_[axis] = std::move(unknown);
+    cholesky_[axis] = other.cholesky_[axis];
+    changed_[axis] = false;
+  }
+}
+
+int ChartPlanes::number_unknowns(int axis, int n, std::vector<int>& of_root, std::vector<int>& unknown) const {
+  of_root.assign(n, -1);
+  unknown.resize(n);
+  int m = 0;
+  for (int v = 0; v < n; ++v) {
+    const int r = root(axis, v);
+    if (of_root[r] < 0) of_root[r] = m++;
+    unknown[v] = of_root[r];
+  }
+  return m;
+}
+
 void ChartPlanes::release() {
   for (int axis = 0; axis < 3; ++axis) {
     cholesky_[axis].reset();
@@ -107,21 +133,14 @@ Eigen::SparseMatrix<double> reduced_matrix(const Eigen::SparseMatrix<double>& la
 
 void ChartPlanes::factorize(const Eigen::SparseMatrix<double>& laplacian) {
   const int n = static_cast<int>(laplacian.rows());
-  std::vector<int> of_root(n);
+  std::vector<int> of_root;
   for (int axis = 0; axis < 3; ++axis) {
     if (!changed_[axis]) continue;
     changed_[axis] = false;
     ++factorizations_;
     // One unknown per union-find set.
     std::vector<int>& unknown = unknown_[axis];
-    unknown.resize(n);
-    int m = 0;
-    std::fill(of_root.begin(), of_root.end(), -1);
-    for (int v = 0; v < n; ++v) {
-      const int r = root(axis, v);
-      if (of_root[r] < 0) of_root[r] = m++;
-      unknown[v] = of_root[r];
-    }
+    const int m = number_unknowns(axis, n, of_root, unknown);
     const Eigen::SparseMatrix<double> reduced = reduced_matrix(laplacian, unknown, m);
     cholesky_[axis].reset();  // before the new factor: never two of one axis in memory
     auto cholesky = std::make_shared<SparseCholesky>();
@@ -146,6 +165,26 @@ Vertices ChartPlanes::solve(const Eigen::MatrixX3d& rhs) const {
     for (Eigen::Index v = 0; v < n; ++v) b[unknown[v]] += rhs(v, axis);
     const Eigen::VectorXd y = cholesky_[axis]->solve(b);
     for (Eigen::Index v = 0; v < n; ++v) x(v, axis) = y[unknown[v]];
+  }
+  return x;
+}
+
+std::array<Vertices, 2> ChartPlanes::solve(const Eigen::MatrixX3d& first, const Eigen::MatrixX3d& second) const {
+  solves_ += 2;
+  const Eigen::Index n = first.rows();
+  std::array<Vertices, 2> x = {Vertices(n, 3), Vertices(n, 3)};
+  for (int axis = 0; axis < 3; ++axis) {
+    const std::vector<int>& unknown = unknown_[axis];
+    Eigen::MatrixX2d b = Eigen::MatrixX2d::Zero(cholesky_[axis]->rows(), 2);
+    for (Eigen::Index v = 0; v < n; ++v) {
+      b(unknown[v], 0) += first(v, axis);
+      b(unknown[v], 1) += second(v, axis);
+    }
+    const Eigen::MatrixX2d y = cholesky_[axis]->solve(b);
+    for (Eigen::Index v = 0; v < n; ++v) {
+      x[0](v, axis) = y(unknown[v], 0);
+      x[1](v, axis) = y(unknown[v], 1);
+    }
   }
   return x;
 }
@@ -191,8 +230,10 @@ bool ChartPlanes::solve_near(const Eigen::SparseMatrix<double>& laplacian, const
       for (Eigen::SparseMatrix<double>::InnerIterator it(laplacian, column); it; ++it) {
         const int row = unknown[it.row()];
         if (row < 0) continue;
-        if (unknown[column] >= 0) entries.emplace_back(row, unknown[column], it.value());
-        else b[row] -= it.value() * result(column, axis);
+        if (unknown[column] >= 0)
+          entries.emplace_back(row, unknown[column], it.value());
+        else
+          b[row] -= it.value() * result(column, axis);
       }
     for (int v = 0; v < n; ++v)
       if (unknown[v] >= 0) b[unknown[v]] += rhs(v, axis);

@@ -52,6 +52,14 @@ class ChartPlanes {
   // bit for bit, for nothing or for less. Factors it has replaced are not
   // kept for this: two of one axis would be in memory at once.
   void use_chart_factors(const ChartPlanes& same_charts);
+  // Takes `other`'s factors (of the same Laplacian, factorised since its
+  // last collapse) for each axis on which this one has the same unknowns:
+  // the same system, so the same factor bit for bit, for nothing. The axes
+  // left are factorised by the next factorize(). What a polish does with
+  // the planes of the run it polishes (polish_stage.h): B0's run ends on
+  // the very charts the polish solves on, three factorisations of its
+  // eleven.
+  void share_factors(const ChartPlanes& other);
   // Frees the factors (shared ones stay with their other owner) until the
   // next factorize(), which redoes every axis.
   void release();
@@ -67,6 +75,9 @@ class ChartPlanes {
   // Minimises x^T L x / 2 - b^T x over the positions with flat charts; `rhs`
   // is the n x 3 b. Uses the charts and collapses of the last factorize().
   Vertices solve(const Eigen::MatrixX3d& rhs) const;
+  // Two solves at once, each to the bits it would have alone, reading each
+  // factor once (sparse_cholesky.h); counted as two.
+  std::array<Vertices, 2> solve(const Eigen::MatrixX3d& first, const Eigen::MatrixX3d& second) const;
   // Per vertex, its unknown of coordinate `axis` as of the last factorize():
   // vertices that share one move together, or the charts stop being flat.
   const std::vector<int>& unknowns(int axis) const { return unknown_[axis]; }
@@ -74,6 +85,10 @@ class ChartPlanes {
  private:
   int root(int axis, int v) const;
   void join(int axis, int a, int b);
+  // Per vertex, its set's unknown of `axis`: the sets numbered in the order
+  // of their first vertex, so equal partitions give equal unknowns. Returns
+  // how many there are.
+  int number_unknowns(int axis, int n, std::vector<int>& of_root, std::vector<int>& unknown) const;
 
   Triangles triangles_;
   mutable std::array<UnionFind, 3> sets_;    // per axis: vertices sharing that coordinate

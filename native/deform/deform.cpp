@@ -4,6 +4,7 @@
 #include "deform/deform.h"
 
 #include "deform/deformation.h"
+#include "deform/finished_run.h"
 #include "deform/paper_iteration.h"
 #include "deform/robust_run.h"
 #include "mesh/check_input.h"
@@ -18,33 +19,66 @@ Variant parse_variant(const std::string& name) {
 
 const char* variant_name(Variant variant) {
   switch (variant) {
-    case Variant::kFixed: return "fixed";
-    case Variant::kCurrent: return "current";
-    case Variant::kRobust: break;
+    case Variant::kFixed:
+      return "fixed";
+    case Variant::kCurrent:
+      return "current";
+    case Variant::kRobust:
+      break;
   }
   return "robust";
 }
 
-DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>& labels, const DeformOptions& options,
-                                const IterationCallback& callback) {
+namespace {
+
+void check_run(const PolygonMesh& mesh, const std::vector<int>& labels, const DeformOptions& options) {
   check_input(mesh, &labels);
   if (options.iterations < 0) throw Error("the iteration limit must be 0 or more");
   if (!(options.tolerance_deg >= 0.0)) throw Error("the tolerance must be 0 or more degrees");
   if (options.start.size() > 0 && (options.start.rows() != mesh.vertices.rows() || !options.start.allFinite()))
     throw Error("the start positions must be finite, one row per vertex of the mesh");
+}
 
-  Deformation deformation(mesh, labels, options, callback);
+// The iterations of the variant on `deformation`, just built, and the
+// result; a robust run's last flat charts go to `planes`.
+DeformResult iterate(Deformation& deformation, std::unique_ptr<ChartPlanes>& planes) {
   // A solve that breaks down after some iterations (the paper's `current`
   // variant on armadillo: its triangles degenerate until the Laplacian is
   // singular) ends the run with what was done, not with nothing.
   try {
-    if (options.variant == Variant::kRobust) robust_iteration(deformation);
-    else paper_iteration(deformation);
+    if (deformation.options.variant == Variant::kRobust)
+      planes = robust_iteration(deformation);
+    else
+      paper_iteration(deformation);
   } catch (const Error& e) {
     if (deformation.result.iterations == 0) throw;
     deformation.result.failure = e.what();
   }
   return deformation.conclude();
+}
+
+}  // namespace
+
+DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>& labels, const DeformOptions& options,
+                                const IterationCallback& callback) {
+  check_run(mesh, labels, options);
+  Deformation deformation(mesh, labels, options, callback);
+  std::unique_ptr<ChartPlanes> planes;
+  return iterate(deformation, planes);
+}
+
+DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>& labels, const DeformOptions& options,
+                                const IterationCallback& callback, std::unique_ptr<FinishedRun>& finished) {
+  check_run(mesh, labels, options);
+  auto run = std::make_unique<FinishedRun>();
+  run->options = options;
+  run->labels = labels;
+  run->callback = callback;
+  run->deformation = std::make_unique<Deformation>(mesh, run->labels, run->options, run->callback);
+  DeformResult result = iterate(*run->deformation, run->planes);
+  run->callback = nullptr;
+  finished = std::move(run);
+  return result;
 }
 
 }  // namespace polycube

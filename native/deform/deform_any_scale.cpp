@@ -9,6 +9,7 @@
 
 #include "deform/deform.h"
 #include "deform/deformation.h"
+#include "deform/finished_run.h"
 #include "deform/polish_stage.h"
 #include "deform/quality.h"
 #include "deform/relabel_collapsed_faces.h"
@@ -98,12 +99,13 @@ void add_cost(DeformResult& into, const DeformResult& from) {
 // input, and a caller that keeps every iteration, as shape keys, would get a
 // run it may not keep); only `stop_requested` reaches it. Not converged
 // unless it is an exact polycube with nothing turned over and no more edges
-// folded than the input's.
-DeformResult silent_run(const PolygonMesh& mesh, const std::vector<int>& labels, const DeformOptions& options) {
+// folded than the input's. What it leaves for a polish goes to `finished`.
+DeformResult silent_run(const PolygonMesh& mesh, const std::vector<int>& labels, const DeformOptions& options,
+                        std::unique_ptr<FinishedRun>& finished) {
   IterationCallback stop_only;
   if (options.stop_requested)
     stop_only = [&options](int, const Vertices&, const Figures&) { return !options.stop_requested(); };
-  DeformResult run = deform_in_unit_box(mesh, labels, options, stop_only);
+  DeformResult run = deform_in_unit_box(mesh, labels, options, stop_only, finished);
   run.converged = !run.stopped && run.converged && run.figures.flipped_faces == 0 &&
                   run.figures.folded_edges <= run.input_folded_edges;
   return run;
@@ -148,16 +150,21 @@ void keep_as_next_iteration(const PolygonMesh& mesh, const Triangulation& triang
 // One run of stage 8 from the input with `moved` (labels that differ from
 // the result's on some faces), kept as the next iteration when it is exact,
 // fold-free and collapses less area (then the faces it relabelled join
-// `relabelled_faces`); else only its cost is added to `result`. Returns
-// whether it was kept.
+// `relabelled_faces`, and what it leaves for a polish replaces `finished`);
+// else only its cost is added to `result`. Returns whether it was kept.
 bool keep_if_better(const PolygonMesh& mesh, const RerunMesh& shared, const std::vector<int>& labels,
                     const DeformOptions& options, const IterationCallback& callback, const std::vector<int>& moved,
-                    DeformResult& result) {
-  DeformResult again = silent_run(mesh, moved, options);
+                    DeformResult& result, std::unique_ptr<FinishedRun>& finished) {
+  // The result's finished run is not held through another: its set-up and
+  // factors would add to that run's peak.
+  finished.reset();
+  std::unique_ptr<FinishedRun> again_finished;
+  DeformResult again = silent_run(mesh, moved, options, again_finished);
   if (!again.converged || !(again.figures.collapsed_area < result.figures.collapsed_area)) {
     add_cost(result, again);
     return false;
   }
+  finished = std::move(again_finished);
   std::vector<int> relabelled = result.relabelled_faces;
   for (size_t f = 0; f < moved.size(); ++f)
     if (moved[f] != result.labels[f]) relabelled.push_back(static_cast<int>(f));
@@ -176,9 +183,10 @@ bool keep_if_better(const PolygonMesh& mesh, const RerunMesh& shared, const std:
 // whether it was kept. The callback sees a kept run once, as the iteration
 // after the last one it saw (DeformResult::second_run_iterations counts the
 // further runs' own iterations), and the faces relabelled join
-// `relabelled_faces`.
+// `relabelled_faces` (and what it leaves for a polish replaces `finished`).
 bool rerun_collapsed(const PolygonMesh& mesh, const RerunMesh& shared, const std::vector<int>& labels,
-                     const DeformOptions& options, const IterationCallback& callback, DeformResult& result) {
+                     const DeformOptions& options, const IterationCallback& callback, DeformResult& result,
+                     std::unique_ptr<FinishedRun>& finished) {
   if (result.stopped || !result.converged || result.figures.collapsed_faces == 0 || result.figures.flipped_faces > 0 ||
       (options.stop_requested && options.stop_requested()))
     return false;
@@ -197,7 +205,7 @@ bool rerun_collapsed(const PolygonMesh& mesh, const RerunMesh& shared, const std
   if (changed.empty()) return false;
   const int score = violation_score(adjacency, result.labels);
   if (violation_score(adjacency, moved) <= score)
-    return keep_if_better(mesh, shared, labels, options, callback, moved, result);
+    return keep_if_better(mesh, shared, labels, options, callback, moved, result, finished);
   // Moving boundaries past collapsed faces can break the polycube conditions
   // elsewhere (a corner of four charts). First the moves that break nothing
   // (keep_valid_moves.h): small steps, but they keep the charts the run
@@ -206,7 +214,7 @@ bool rerun_collapsed(const PolygonMesh& mesh, const RerunMesh& shared, const std
   int kept = 0;
   const std::vector<int> valid =
       keep_valid_moves(adjacency, shared.edges_of_face, result.labels, moved, changed, &kept);
-  if (kept > 0 && keep_if_better(mesh, shared, labels, options, callback, valid, result)) return true;
+  if (kept > 0 && keep_if_better(mesh, shared, labels, options, callback, valid, result, finished)) return true;
   // Then the whole move, mended by the labeller's repair, with the faces'
   // old labels barred so it does not undo the move: it relabels more, and
   // gets further where the small steps stall (the held-out hand: 2.27%,
@@ -217,7 +225,7 @@ bool rerun_collapsed(const PolygonMesh& mesh, const RerunMesh& shared, const std
   for (int f : changed) energy.data(f, result.labels[f]) += kBarred;
   const std::vector<int> repaired = repair_charts(adjacency, energy, std::move(moved), kRepairMoves);
   if (violation_score(adjacency, repaired) > score) return false;
-  return keep_if_better(mesh, shared, labels, options, callback, repaired, result);
+  return keep_if_better(mesh, shared, labels, options, callback, repaired, result, finished);
 }
 
 // Whether stage 9 can change anything: the bound it raises refused one of
@@ -235,21 +243,38 @@ bool refused_for_collapse(const DeformResult& run, const DeformOptions& options)
 }
 
 // The polish (polish_stage.h) of an exact result, on the labels it ended
-// with: when it keeps a step, one more iteration to the callback.
+// with: when it keeps a step, one more iteration to the callback. On the
+// set-up and flat charts of the run that gave the result (`finished`, when
+// that run is at hand), or on its own: the same positions, labels and
+// Laplacian either way, so the same polish bit for bit.
 void polish(const PolygonMesh& mesh, const std::vector<int>& labels, const DeformOptions& options,
-            const IterationCallback& callback, DeformResult& result) {
+            const IterationCallback& callback, DeformResult& result, std::unique_ptr<FinishedRun> finished) {
   Stopwatch clock;
   DeformOptions from_result = options;
-  from_result.start = result.positions;
   const IterationCallback none;
-  Deformation d(mesh, result.labels, from_result, none);
-  RobustRun run(d);
+  std::unique_ptr<Deformation> own;
+  std::unique_ptr<RobustRun> run;
+  std::unique_ptr<ChartPlanes> factored;
+  if (finished) {
+    Deformation& d = *finished->deformation;
+    d.x = result.positions;
+    d.result = DeformResult();
+    d.factorization.release();  // restored by conclude() for the reference timings alone
+    d.acceptable_x = Vertices();  // the run's fallback, of no use to the polish
+    run = std::make_unique<RobustRun>(d, Assembled{});
+    factored = std::move(finished->planes);
+  } else {
+    from_result.start = result.positions;
+    own = std::make_unique<Deformation>(mesh, result.labels, from_result, none);
+    run = std::make_unique<RobustRun>(*own);
+  }
+  Deformation& d = run->d;
   int steps = 0;
   // A polish that breaks down (a flat-chart system that cannot be
   // factorised, a solve that is not finite) costs the caller nothing: the
   // run's result stands.
   try {
-    steps = polish_stage(run);
+    steps = polish_stage(*run, std::move(factored));
   } catch (const Error&) {
     steps = 0;
   }
@@ -290,7 +315,9 @@ DeformResult deform(const PolygonMesh& input, const std::vector<int>& labels, co
     };
   DeformOptions unit_options = options;
   if (options.start.size() > 0) unit_options.start = unit.box().to_unit(options.start);
-  DeformResult result = deform_in_unit_box(mesh, labels, unit_options, unit_callback);
+  // What the run that gave `result` leaves for its polish, while at hand.
+  std::unique_ptr<FinishedRun> finished;
+  DeformResult result = deform_in_unit_box(mesh, labels, unit_options, unit_callback, finished);
   const bool robust = options.variant == Variant::kRobust;
   std::unique_ptr<RerunMesh> shared;
   if (robust && options.last_resort && !result.converged && !result.stopped &&
@@ -298,9 +325,12 @@ DeformResult deform(const PolygonMesh& input, const std::vector<int>& labels, co
       !(options.stop_requested && options.stop_requested())) {
     DeformOptions last_resort = unit_options;
     last_resort.max_collapsed_share = kLastResortCollapsedShare;
-    DeformResult again = silent_run(mesh, labels, last_resort);
+    finished.reset();  // not held through another run
+    std::unique_ptr<FinishedRun> again_finished;
+    DeformResult again = silent_run(mesh, labels, last_resort, again_finished);
     again.last_resort = true;  // and the further runs below keep saying so
     if (again.converged) {
+      finished = std::move(again_finished);
       shared = std::make_unique<RerunMesh>(mesh);
       keep_as_next_iteration(mesh, shared->triangulation, labels, unit_callback, std::move(again), result);
       unit_options = last_resort;  // the further runs below flatten the same way
@@ -313,7 +343,7 @@ DeformResult deform(const PolygonMesh& input, const std::vector<int>& labels, co
     const double triangles = static_cast<double>(shared->triangulation.triangles.rows());
     for (int round = 0; round < kRerunRounds; ++round) {
       const double before = result.figures.collapsed_area;
-      if (!rerun_collapsed(mesh, *shared, labels, unit_options, unit_callback, result)) break;
+      if (!rerun_collapsed(mesh, *shared, labels, unit_options, unit_callback, result, finished)) break;
       const Figures& now = result.figures;
       if (now.collapsed_area < kMarginArea && now.collapsed_faces < kMarginFaces * triangles &&
           now.collapsed_area > (1.0 - kRerunGain) * before)
@@ -323,7 +353,7 @@ DeformResult deform(const PolygonMesh& input, const std::vector<int>& labels, co
   // The polish is one more iteration: within the limit, like the others.
   if (robust && options.polish && result.converged && !result.stopped && result.figures.flipped_faces == 0 &&
       result.iterations < options.iterations && !(options.stop_requested && options.stop_requested()))
-    polish(mesh, labels, unit_options, unit_callback, result);
+    polish(mesh, labels, unit_options, unit_callback, result, std::move(finished));
   result.positions = unit.box().from_unit(result.positions, mesh.vertices, input.vertices);
   // The report never contradicts itself: a run that leaves faces above the
   // tolerance or folded is not converged, whatever the figures' rounding said.

@@ -341,8 +341,7 @@ LeftOut left_out_of(const RobustRun& run) {
 // shortest in L's norm: along it neither error grows (the common descent
 // direction of two objectives) unless no step can do that.
 Vertices common_descent(const ChartPlanes& planes, const std::array<Vertices, 2>& gradients) {
-  std::array<Vertices, 2> steps;
-  for (int k = 0; k < 2; ++k) steps[k] = planes.solve(-gradients[k]);
+  const std::array<Vertices, 2> steps = planes.solve(-gradients[0], -gradients[1]);
   // <s_i, s_j> in L's norm is -g_i . s_j.
   const double a = -(gradients[0].cwiseProduct(steps[0])).sum(), b = -(gradients[1].cwiseProduct(steps[1])).sum(),
                c = -(gradients[0].cwiseProduct(steps[1])).sum();
@@ -352,10 +351,14 @@ Vertices common_descent(const ChartPlanes& planes, const std::array<Vertices, 2>
 
 }  // namespace
 
-int polish_stage(RobustRun& run) {
+int polish_stage(RobustRun& run, std::unique_ptr<ChartPlanes> factored) {
   Deformation& d = run.d;
   ChartPlanes planes(d.n, d.triangles(), d.triangle_labels);
   keep_collapsed_on_their_lines(run, planes);
+  if (factored) {
+    planes.share_factors(*factored);
+    factored.reset();  // its other factors: not in memory beside new ones
+  }
   planes.factorize(d.laplacian.matrix());
   const Figures start = d.quality.measure(d.x, run.state);
   const AreaBounds bounds = area_bounds(d, run.state);

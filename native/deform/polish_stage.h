@@ -30,13 +30,20 @@
 // collapsed areas, not errors), so it changes none of them.
 //
 // Input: a RobustRun whose positions are an exact, fold-free polycube of its
-// labels, its Laplacian assembled. Output: the steps kept (0: the positions
+// labels, its Laplacian assembled, and optionally `factored`: flat charts
+// factorised with that Laplacian (those the run ended with), whose factors
+// serve the axes on which the polish's charts are the same
+// (ChartPlanes::share_factors); they are freed before any other is
+// factorised. Output: the steps kept (0: the positions
 // are unchanged, as when either figure would have grown); when more than 0,
 // run.state and run.d.result.figures are those of the new positions.
 #pragma once
 
+#include <memory>
+
 namespace polycube {
 
+class ChartPlanes;
 struct RobustRun;
 
 // At most this many steps (most of the gain comes first: B0's edge error
@@ -53,6 +60,6 @@ constexpr double kPolishStretch = 4.0;
 // The first step's largest move, a share of the bounding box diagonal.
 constexpr double kPolishFirstStep = 0.005;
 
-int polish_stage(RobustRun& run);
+int polish_stage(RobustRun& run, std::unique_ptr<ChartPlanes> factored = nullptr);
 
 }  // namespace polycube

@@ -39,6 +39,11 @@ RobustRun::RobustRun(Deformation& deformation) : d(deformation) {
   diagonal = (d.mesh.vertices.colwise().maxCoeff() - d.mesh.vertices.colwise().minCoeff()).norm();
 }
 
+RobustRun::RobustRun(Deformation& deformation, const Assembled&) : d(deformation) {
+  state = d.quality.face_states(d.x);
+  diagonal = (d.mesh.vertices.colwise().maxCoeff() - d.mesh.vertices.colwise().minCoeff()).norm();
+}
+
 const std::vector<std::vector<int>>& RobustRun::face_adjacency() {
   if (adjacency_.empty()) adjacency_ = face_neighbours(mesh_adjacency(d.mesh.faces, d.n), d.mesh.faces.count());
   return adjacency_;
@@ -60,7 +65,7 @@ std::unique_ptr<ChartPlanes> RobustRun::charts_like(const ChartPlanes& same_char
   return planes;
 }
 
-void robust_iteration(Deformation& d) {
+std::unique_ptr<ChartPlanes> robust_iteration(Deformation& d) {
   RobustRun run(d);
   d.begin_iterations();
   DeformResult& result = d.result;
@@ -110,6 +115,7 @@ void robust_iteration(Deformation& d) {
     }
     if (!d.finish_iteration(iteration, &run.state)) break;
   }
+  return std::move(run.planes);
 }
 
 }  // namespace polycube

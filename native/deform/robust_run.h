@@ -22,6 +22,9 @@
 
 namespace polycube {
 
+// The tag of RobustRun's constructor for a Deformation set up already.
+struct Assembled {};
+
 // Steps of a vertex are halved at most this often before it is held
 // (fold_free_step.h); whole blends towards a flat shape likewise.
 constexpr int kMaxHalvings = 6;
@@ -33,6 +36,10 @@ struct RobustRun {
   // Positive cotangent weights, the input's Laplacian assembled and (unless
   // the start converged already) factorised, the start's face states.
   explicit RobustRun(Deformation& deformation);
+  // On a Deformation whose weights and Laplacian an earlier RobustRun set up
+  // (the polish of a finished run, finished_run.h): the face states of its
+  // positions alone.
+  RobustRun(Deformation& deformation, const Assembled&);
 
   Deformation& d;
   FaceStates state;               // of d.x
@@ -64,6 +71,9 @@ struct RobustRun {
 };
 
 // The whole robust run on a Deformation just built with variant kRobust.
-void robust_iteration(Deformation& deformation);
+// Returns the flat charts it ended with, factorised (null when it never
+// flattened or freed them): the polish of its result shares their factors
+// (polish_stage.h).
+std::unique_ptr<ChartPlanes> robust_iteration(Deformation& deformation);
 
 }  // namespace polycube

@@ -41,7 +41,10 @@ class SparseCholesky {
   void analyze(const Eigen::SparseMatrix<double>& matrix, const Ordering& ordering);
   // Throws Error when the matrix cannot be factorised.
   void factorize(const Eigen::SparseMatrix<double>& matrix);
+  // Several right-hand sides are solved in one pass over the factor, each
+  // to the bits it would have alone.
   Eigen::MatrixX3d solve(const Eigen::MatrixX3d& rhs) const;
+  Eigen::MatrixX2d solve(const Eigen::MatrixX2d& rhs) const;
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const;
 
   // Frees the factor (most of this object's memory) once no more solves are

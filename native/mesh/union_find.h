@@ -20,6 +20,8 @@ class UnionFind {
     std::iota(parent_.begin(), parent_.end(), 0);
   }
 
+  int size() const { return static_cast<int>(parent_.size()); }
+
   int root(int v) {
     while (parent_[v] != v) {
       parent_[v] = parent_[parent_[v]];

@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 #include <fstream>
+#include <memory>
 #include <set>
 
 #include "deform/chart_planes.h"
@@ -129,6 +130,44 @@ TEST(ChartPlanes, SameChartsShareTheirFactorsAndOrderings) {
   again.factorize(L);
   EXPECT_EQ(again.factorizations(), 4);
   EXPECT_EQ(again.solve(L * s.x), expected);
+}
+
+// Planes built again on the same charts and collapses (the polish of a
+// finished run, polish_stage.h) take that run's factors of the axes whose
+// unknowns are the same and factorise only the others: the same solution
+// bit for bit as factorising all three. An axis collapsed differently is
+// not shared, nor are factors a collapse made stale.
+TEST(ChartPlanes, SameUnknownsShareTheRunsFactors) {
+  const Block s = noisy_l_block(0.05);
+  const Eigen::SparseMatrix<double> L = shifted_laplacian(s);
+  const int n = static_cast<int>(s.x.rows());
+  const int other = (s.labels[0] / 2 + 1) % 3;
+  ChartPlanes run(n, s.triangles, s.labels);
+  run.collapse(0, other);
+  run.factorize(L);
+  ChartPlanes fresh(n, s.triangles, s.labels);
+  fresh.collapse(0, other);
+  fresh.factorize(L);
+  // New planes on the labels, with or without the run's collapse, sharing its factors.
+  auto sharing = [&](bool collapsed) {
+    auto planes = std::make_unique<ChartPlanes>(n, s.triangles, s.labels);
+    if (collapsed) planes->collapse(0, other);
+    planes->share_factors(run);
+    planes->factorize(L);
+    return planes;
+  };
+  const auto polish = sharing(true);
+  EXPECT_EQ(polish->factorizations(), 0);
+  EXPECT_EQ(polish->solve(L * s.x), fresh.solve(L * s.x));
+  const auto charts_only = sharing(false);  // `other` without the collapse
+  EXPECT_EQ(charts_only->factorizations(), 1);
+  ChartPlanes all(n, s.triangles, s.labels);
+  all.factorize(L);
+  EXPECT_EQ(charts_only->solve(L * s.x), all.solve(L * s.x));
+  run.collapse(1, (s.labels[1] / 2 + 2) % 3);  // a collapse not yet factorised: that axis' factor is stale
+  const auto stale = sharing(true);
+  EXPECT_EQ(stale->factorizations(), 1);
+  EXPECT_EQ(stale->solve(L * s.x), fresh.solve(L * s.x));
 }
 
 // Each axis' system P^T L P is built without a triplet list (chart_planes.cpp);

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/SparseCholesky>
+#include <cmath>
 #include <cstdlib>
 
 #include "linear_algebra/laplacian.h"
@@ -118,6 +119,36 @@ TEST(SparseCholesky, OrdersAsEigensOwnAnalysis) {
     const Eigen::MatrixX3d b = Eigen::MatrixX3d::Random(a.rows(), 3);
     EXPECT_EQ(ours.solve(b), Eigen::MatrixX3d(eigen.solve(b)));
   }
+}
+
+// Several right-hand sides are solved in one pass over the factor: each
+// column to the very bits Eigen's solve of it alone gives, zero entries
+// (which Eigen's triangular solve skips) and negative zeros included.
+TEST(SparseCholesky, ColumnsSolvedTogetherAreTheColumnsSolvedAlone) {
+  const SparseMatrix a = shifted_laplacian(test_meshes::uv_sphere(48, 24));
+  SparseCholesky ours;
+  ours.analyze(a);
+  ours.factorize(a);
+  Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>> eigen;
+  eigen.compute(a);
+  std::srand(3);
+  Eigen::MatrixX3d b = Eigen::MatrixX3d::Random(a.rows(), 3);
+  for (Eigen::Index i = 0; i < b.rows(); i += 3) b(i, 1) = 0.0;  // sparse columns, differently so
+  for (Eigen::Index i = 0; i < b.rows(); i += 5) b(i, 2) = -0.0;
+  b.col(0).head(b.rows() / 2).setZero();
+  const Eigen::MatrixX3d three = ours.solve(b);
+  const Eigen::MatrixX2d two = ours.solve(Eigen::MatrixX2d(b.leftCols(2)));
+  for (int c = 0; c < 3; ++c) {
+    const Eigen::VectorXd alone = eigen.solve(Eigen::VectorXd(b.col(c)));
+    for (Eigen::Index i = 0; i < b.rows(); ++i) {
+      EXPECT_EQ(std::signbit(three(i, c)), std::signbit(alone[i]));
+      ASSERT_EQ(three(i, c), alone[i]) << c << " " << i;
+      if (c < 2) {
+        ASSERT_EQ(two(i, c), alone[i]) << c << " " << i;
+      }
+    }
+  }
+  EXPECT_EQ(ours.solve(Eigen::VectorXd(b.col(1))), three.col(1));
 }
 
 TEST(SparseCholesky, IndefiniteLargeSystemFallsBackToLdlt) {
