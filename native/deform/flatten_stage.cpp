@@ -44,6 +44,9 @@ void flatten_stage(RobustRun& run, int iteration) {
   }
   if (!flat.found) {
     d.restore_factorization();  // the continuous stage goes on
+    // Charged here: left in the phase, the iteration's measurement would take
+    // it, and the iteration's stage, losing it twice, could fall below zero.
+    result.seconds.factorize += d.phase.lap();
     attempt.seconds = clock.lap();
     return;
   }

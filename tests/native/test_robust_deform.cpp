@@ -325,6 +325,15 @@ TEST(Robust, ContinuousFallbackFactorisesNothingPerIteration) {
   EXPECT_GE(longer.stages.current_steps, shorter.stages.current_steps + 15);
   EXPECT_EQ(longer.factorizations, shorter.factorizations);
   EXPECT_EQ(longer.stages.continuous.count + longer.stages.fit.count, 60);
+  // A refused attempt refactorises the input's Laplacian on its way out: that
+  // is the attempt's, not the iteration's measurement nor its stage's.
+  const StageSeconds& s = longer.stages;
+  double sum = 0.0;
+  for (const StageCost* cost : {&s.set_up, &s.fit, &s.continuous, &s.relax, &s.flatten, &s.untangle, &s.measure}) {
+    EXPECT_GE(cost->seconds, 0.0);
+    sum += cost->seconds;
+  }
+  EXPECT_LE(sum, longer.seconds.total);
   EXPECT_EQ(longer.figures.flipped_faces, 0);
   EXPECT_LE(longer.figures.folded_edges, longer.input_folded_edges);
 }
