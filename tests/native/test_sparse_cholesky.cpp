@@ -1,5 +1,6 @@
 #include <dlfcn.h>
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 
 #include <Eigen/SparseCholesky>
 #include <cmath>
@@ -48,6 +49,29 @@ TEST(SparseCholesky, ThePluginsOpenBlasRunsOnOneThread) {
   ASSERT_NE(get_threads, nullptr);
   EXPECT_EQ(get_threads(), 1);
   dlclose(blas);
+}
+
+long voluntary_context_switches() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_nvcsw;
+}
+
+// CHOLMOD's own OpenMP teams (four threads per large supernode, fixed in
+// Debian's build) run on the calling thread (supernodal_cholmod.cpp): with
+// them a factorisation of this size waited on futexes thousands of times.
+TEST(SparseCholesky, CholmodsFactorisationWakesNoThreads) {
+  const SparseMatrix a = shifted_laplacian(test_meshes::uv_sphere(400, 150));
+  SparseCholesky cholesky;
+  cholesky.analyze(a);
+  cholesky.factorize(a);  // threads that start with the first call, started
+  ASSERT_STREQ(cholesky.backend(), "cholmod-supernodal");
+  const long before = voluntary_context_switches();
+  for (int i = 0; i < 3; ++i) cholesky.factorize(a);
+  const Eigen::MatrixX3d b = Eigen::MatrixX3d::Ones(a.rows(), 3);
+  const Eigen::MatrixX3d x = cholesky.solve(b);
+  EXPECT_LT(voluntary_context_switches() - before, 30);
+  EXPECT_TRUE(x.allFinite());
 }
 #endif
 
