@@ -1,6 +1,8 @@
 #include "deform/chart_planes.h"
 
 #include <algorithm>
+#include <type_traits>
+#include <utility>
 
 #include "linear_algebra/sparse_cholesky.h"
 
@@ -155,38 +157,30 @@ void ChartPlanes::factorize(const Eigen::SparseMatrix<double>& laplacian) {
   }
 }
 
-Vertices ChartPlanes::solve(const Eigen::MatrixX3d& rhs) const {
-  ++solves_;
-  const Eigen::Index n = rhs.rows();
-  Vertices x(n, 3);
+template <int K>
+std::array<Vertices, K> ChartPlanes::solve_together(const std::array<const Eigen::MatrixX3d*, K>& rhs) const {
+  // A vector for one solve: SparseCholesky solves it as a vector.
+  using Columns = std::conditional_t<K == 1, Eigen::VectorXd, Eigen::Matrix<double, Eigen::Dynamic, K>>;
+  solves_ += K;
+  const Eigen::Index n = rhs[0]->rows();
+  std::array<Vertices, K> x;
+  for (Vertices& solution : x) solution.resize(n, 3);
   for (int axis = 0; axis < 3; ++axis) {
     const std::vector<int>& unknown = unknown_[axis];
-    Eigen::VectorXd b = Eigen::VectorXd::Zero(cholesky_[axis]->rows());
-    for (Eigen::Index v = 0; v < n; ++v) b[unknown[v]] += rhs(v, axis);
-    const Eigen::VectorXd y = cholesky_[axis]->solve(b);
-    for (Eigen::Index v = 0; v < n; ++v) x(v, axis) = y[unknown[v]];
+    Columns b = Columns::Zero(cholesky_[axis]->rows(), K);
+    for (Eigen::Index v = 0; v < n; ++v)
+      for (int k = 0; k < K; ++k) b(unknown[v], k) += (*rhs[k])(v, axis);
+    const Columns y = cholesky_[axis]->solve(b);
+    for (Eigen::Index v = 0; v < n; ++v)
+      for (int k = 0; k < K; ++k) x[k](v, axis) = y(unknown[v], k);
   }
   return x;
 }
 
+Vertices ChartPlanes::solve(const Eigen::MatrixX3d& rhs) const { return std::move(solve_together<1>({&rhs})[0]); }
+
 std::array<Vertices, 2> ChartPlanes::solve(const Eigen::MatrixX3d& first, const Eigen::MatrixX3d& second) const {
-  solves_ += 2;
-  const Eigen::Index n = first.rows();
-  std::array<Vertices, 2> x = {Vertices(n, 3), Vertices(n, 3)};
-  for (int axis = 0; axis < 3; ++axis) {
-    const std::vector<int>& unknown = unknown_[axis];
-    Eigen::MatrixX2d b = Eigen::MatrixX2d::Zero(cholesky_[axis]->rows(), 2);
-    for (Eigen::Index v = 0; v < n; ++v) {
-      b(unknown[v], 0) += first(v, axis);
-      b(unknown[v], 1) += second(v, axis);
-    }
-    const Eigen::MatrixX2d y = cholesky_[axis]->solve(b);
-    for (Eigen::Index v = 0; v < n; ++v) {
-      x[0](v, axis) = y(unknown[v], 0);
-      x[1](v, axis) = y(unknown[v], 1);
-    }
-  }
-  return x;
+  return solve_together<2>({&first, &second});
 }
 
 bool ChartPlanes::solve_near(const Eigen::SparseMatrix<double>& laplacian, const Eigen::MatrixX3d& rhs,

@@ -89,6 +89,9 @@ class ChartPlanes {
   // of their first vertex, so equal partitions give equal unknowns. Returns
   // how many there are.
   int number_unknowns(int axis, int n, std::vector<int>& of_root, std::vector<int>& unknown) const;
+  // The K solves of solve(), one back-substitution per axis for all of them.
+  template <int K>
+  std::array<Vertices, K> solve_together(const std::array<const Eigen::MatrixX3d*, K>& rhs) const;
 
   Triangles triangles_;
   mutable std::array<UnionFind, 3> sets_;    // per axis: vertices sharing that coordinate
