@@ -97,9 +97,12 @@ struct DeformOptions {
   // inside its flat charts (polish_stage.h, docs/design.md section 2.6,
   // stage 10), as one more iteration when the limit leaves room for it.
   bool polish = true;
-  // Polled after every iteration of those further runs, which the callback
-  // does not see: returning true stops them, keeping the run before (Esc in
-  // Blender). The callback stops the first run.
+  // Polled after every iteration, of the first run (as its callback is) and
+  // of those further runs, which the callback does not see, and inside the
+  // stages whose steps take minutes at a million triangles (every round and
+  // Newton iteration of an untangling, every step of the polish): returning
+  // true stops the run at the iteration it is in, keeping what it had; a
+  // further run stopped is not kept (Esc in Blender).
   std::function<bool()> stop_requested;
 };
 

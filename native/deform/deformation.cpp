@@ -128,7 +128,7 @@ bool Deformation::finish_iteration(int iteration, const FaceStates* states) {
   stage->seconds += iteration_clock.lap() - set_apart - measuring;
   ++stage->count;
   set_apart = 0.0;
-  if (callback && !callback(iteration, x, result.figures)) {
+  if ((callback && !callback(iteration, x, result.figures)) || (options.stop_requested && options.stop_requested())) {
     result.stopped = true;
     return false;
   }

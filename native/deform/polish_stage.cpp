@@ -384,6 +384,8 @@ int polish_stage(RobustRun& run, std::unique_ptr<ChartPlanes> factored) {
   Vertices best_x = d.x;
   int steps = 0, best_steps = 0;
   for (; steps < kPolishRounds; ++steps) {
+    // A step costs a second at a million triangles; a stop keeps the best so far.
+    if (d.options.stop_requested && d.options.stop_requested()) break;
     const double sum = errors.edge + errors.area;
     sums.push_back(sum);
     if (steps >= kPolishWindow && sums[steps - kPolishWindow] - sum < kPolishGain * sum) break;

@@ -179,7 +179,8 @@ Matrix6d triangle_hessian(const Triangle& t, const Eigen::VectorXd& at, double e
 
 UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat, const Triangles& triangles,
                                      const std::vector<int>& triangle_labels, int max_rounds, double local_share,
-                                     const CollapseBound& bound, UntangleMinimiser minimiser) {
+                                     const CollapseBound& bound, UntangleMinimiser minimiser,
+                                     const std::function<bool()>& stop) {
   const int n = static_cast<int>(input.rows());
   const Eigen::Index count = triangles.rows();
   UntangledCharts result;
@@ -372,7 +373,8 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
       return energy_of(list, p, gradient, hessians);
     };
     const NewtonResult run =
-        newton.minimize(objective, corners, 6, free_count, at, kNewtonIterations, 1e-9, kNewtonSettled);
+        newton.minimize(objective, corners, 6, free_count, at, kNewtonIterations, 1e-9, kNewtonSettled, stop);
+    result.stopped = result.stopped || run.stopped;
     result.iterations += run.iterations;
     result.factorizations += run.factorizations;
     return run.value;
@@ -428,7 +430,14 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
 
   double previous = std::numeric_limits<double>::infinity();
   size_t last_no_room = 0;
+  // The caller's stop ends the rounds, the result refused (header).
+  auto stopped = [&]() {
+    result.stopped = result.stopped || (stop && stop());
+    if (result.stopped) result.refused = true, result.untangled = false;
+    return result.stopped;
+  };
   for (result.rounds = 1; result.rounds <= max_rounds; ++result.rounds) {
+    if (stopped()) break;
     double reached = 0.0;
     const bool local = !seeds.empty();
     if (!local) {
@@ -438,6 +447,7 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
       minimize_locally();
       reached = energy_of(active, y, nullptr, nullptr);
     }
+    if (stopped()) break;
     double smallest = std::numeric_limits<double>::infinity();
     std::vector<int> no_room;
     for (size_t a = 0; a < active.size(); ++a) {

@@ -30,6 +30,7 @@
 // stage 3 times faster, 107 triangles collapsed instead of 119.
 #pragma once
 
+#include <functional>
 #include <limits>
 #include <vector>
 
@@ -45,7 +46,8 @@ struct UntangledCharts {
   int iterations = 0;      // the minimiser's, over every round
   int factorizations = 0;  // Newton's sparse factorisations, over every round
   bool untangled = false;  // every other triangle has positive area in its chart
-  bool refused = false;    // stopped once past the bound (below): `positions` unfinished
+  bool refused = false;    // stopped once past the bound (below), or stopped: `positions` unfinished
+  bool stopped = false;    // `stop` (below) answered true
 };
 
 // A triangle put on a line stays collapsed in every later round, so the
@@ -80,10 +82,13 @@ constexpr double kUntangleLocalShare = 0.002;
 // `local_share`: rounds are local once at most this share of the triangles
 // is without room, or at most a couple of hundred that are a small share
 // (0: never). `bound`: stop, refused, once the triangles on
-// a line pass it.
+// a line pass it. `stop`, when given, is asked before every round and every
+// Newton iteration: true stops, refused (the user's stop, answered within a
+// factorisation, where a round costs minutes at a million triangles).
 UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat, const Triangles& triangles,
                                      const std::vector<int>& triangle_labels, int max_rounds = kUntangleRounds,
                                      double local_share = kUntangleLocalShare, const CollapseBound& bound = {},
-                                     UntangleMinimiser minimiser = UntangleMinimiser::automatic);
+                                     UntangleMinimiser minimiser = UntangleMinimiser::automatic,
+                                     const std::function<bool()>& stop = {});
 
 }  // namespace polycube

@@ -11,14 +11,14 @@ UntangleStep untangle_step(RobustRun& run, const Vertices& flat, const CollapseB
   UntangleStep opened;
   const UntangledCharts untangled =
       untangle_flat_charts(d.mesh.vertices, flat, d.triangles(), d.triangle_labels, kUntangleRounds,
-                           kUntangleLocalShare, bound);
+                           kUntangleLocalShare, bound, UntangleMinimiser::automatic, d.options.stop_requested);
   opened.rounds = untangled.rounds;
   if (untangled.refused) return opened;
   opened.positions = d.place(untangled.positions);
   opened.states = d.quality.face_states(opened.positions);
-  opened.fold_free = opened.states.flipped_count == 0 &&
-                     d.quality.measure(opened.positions, opened.states, false).folded_edges <=
-                         d.result.input_folded_edges;
+  opened.fold_free =
+      opened.states.flipped_count == 0 &&
+      d.quality.measure(opened.positions, opened.states, false).folded_edges <= d.result.input_folded_edges;
   return opened;
 }
 

@@ -74,9 +74,8 @@ struct NewtonMinimizer::System {
       return static_cast<int>(std::lower_bound(first, last, row) - inner.data());
     };
     position.assign(unknowns.size() * k, -1);
-    for_each_pair([&](size_t e, int p, int q, int row, int column) {
-      position[e * k * k + q * k + p] = index_of(row, column);
-    });
+    for_each_pair(
+        [&](size_t e, int p, int q, int row, int column) { position[e * k * k + q * k + p] = index_of(row, column); });
     diagonal.resize(free);
     for (int i = 0; i < free; ++i) diagonal[i] = index_of(i, i);
   }
@@ -99,7 +98,8 @@ NewtonMinimizer::~NewtonMinimizer() = default;
 
 NewtonResult NewtonMinimizer::minimize(const ElementObjective& objective, const std::vector<int>& element_unknowns,
                                        int element_size, int free, Eigen::VectorXd& x, int max_iterations,
-                                       double gradient_tolerance, double relative_tolerance) {
+                                       double gradient_tolerance, double relative_tolerance,
+                                       const std::function<bool()>& stop) {
   NewtonResult result;
   if (!system_ || !system_->same(element_unknowns, element_size, free))
     system_ = std::make_unique<System>(element_unknowns, element_size, free);
@@ -110,6 +110,10 @@ NewtonResult NewtonMinimizer::minimize(const ElementObjective& objective, const 
   for (; result.iterations < max_iterations; ++result.iterations) {
     if (!std::isfinite(value) || free == 0 || gradient.head(free).lpNorm<Eigen::Infinity>() < gradient_tolerance) {
       result.converged = std::isfinite(value);
+      break;
+    }
+    if (stop && stop()) {
+      result.stopped = true;
       break;
     }
     s.assemble(hessians);

@@ -32,6 +32,7 @@ struct NewtonResult {
   int factorizations = 0;
   double value = 0.0;
   bool converged = false;  // the gradient, the decrease or the predicted decrease fell below the tolerance
+  bool stopped = false;    // `stop` answered true before an iteration
 };
 
 class NewtonMinimizer {
@@ -44,10 +45,12 @@ class NewtonMinimizer {
   // (an unknown shared by two corners). Stops after `max_iterations`, when
   // the largest free gradient entry is below `gradient_tolerance`, or when an
   // iteration lowers f (or Newton's model predicts it would) by less than
-  // `relative_tolerance` of |f|.
+  // `relative_tolerance` of |f|. `stop`, when given, is asked before every
+  // iteration (each a factorisation: seconds at a million triangles) and
+  // ends the minimisation, `x` as the last iteration left it, when true.
   NewtonResult minimize(const ElementObjective& objective, const std::vector<int>& element_unknowns, int element_size,
                         int free, Eigen::VectorXd& x, int max_iterations, double gradient_tolerance = 1e-10,
-                        double relative_tolerance = 1e-10);
+                        double relative_tolerance = 1e-10, const std::function<bool()>& stop = {});
 
  private:
   struct System;

@@ -420,8 +420,11 @@ labels: per face, 0..5 = +X, -X, +Y, -Y, +Z, -Z, -1 = nearest axis.
 callback(iteration, positions, figures) is called after every iteration; returning False stops.
 relabel_collapsed (robust): an exact result that collapsed faces is run once more with them
 relabelled, and that run kept when less collapses (docs/design.md section 2.6, stage 8; the
-callback sees its result once, as the last iteration). stop() is polled during those runs,
-which the callback does not see; returning True stops them and keeps the run before.
+callback sees its result once, as the last iteration). stop() is polled after every iteration,
+of the first run and of those runs, which the callback does not see, and within the stages whose
+steps take minutes on large meshes (the untangling's rounds and Newton iterations, the polish's
+steps); returning True stops the run at the iteration it is in and keeps what it had (a further
+run stopped is not kept).
 last_resort (robust): a run that does not become an exact polycube is run once more, silently,
 its flattening accepted up to half the area collapsed (stage 9; the report's last_resort says
 when that run was kept); False returns the first run's best state.

@@ -9,12 +9,14 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <functional>
+#include <optional>
 #include <set>
 
 #include "deform/barrier_energy.h"
 #include "deform/quality.h"
-#include "io/read_mesh.h"
 #include "deform/untangle_flat_charts.h"
+#include "io/read_mesh.h"
 #include "linear_algebra/minimize_lbfgs.h"
 #include "linear_algebra/minimize_newton.h"
 #include "mesh/triangulate.h"
@@ -56,12 +58,15 @@ TEST(BarrierEnergy, DerivativesMatchFiniteDifferences) {
         Eigen::Matrix2d plus = j, minus = j;
         plus.data()[k] += h;
         minus.data()[k] -= h;
-        const double by_k = (barrier_energy(plus, 0.7, eps, kTheta) - barrier_energy(minus, 0.7, eps, kTheta)) / (2 * h);
-        EXPECT_NEAR(gradient.data()[k], by_k, 1e-5 * (1.0 + std::abs(by_k))) << "det " << j.determinant() << " eps " << eps;
+        const double by_k =
+            (barrier_energy(plus, 0.7, eps, kTheta) - barrier_energy(minus, 0.7, eps, kTheta)) / (2 * h);
+        EXPECT_NEAR(gradient.data()[k], by_k, 1e-5 * (1.0 + std::abs(by_k)))
+            << "det " << j.determinant() << " eps " << eps;
         Eigen::Matrix2d g_plus, g_minus;
         barrier_energy(plus, 0.7, eps, kTheta, &g_plus);
         barrier_energy(minus, 0.7, eps, kTheta, &g_minus);
-        const Eigen::Vector4d column = Eigen::Map<const Eigen::Vector4d>(Eigen::Matrix2d(g_plus - g_minus).data()) / (2 * h);
+        const Eigen::Vector4d column =
+            Eigen::Map<const Eigen::Vector4d>(Eigen::Matrix2d(g_plus - g_minus).data()) / (2 * h);
         EXPECT_LT((hessian.col(k) - column).norm(), 1e-5 * (1.0 + column.norm()))
             << "det " << j.determinant() << " eps " << eps;
       }
@@ -190,15 +195,35 @@ TEST(MinimizeNewton, SolvesAQuadraticInOneStepAndHoldsTheRest) {
 }
 
 // A real untangling: fandisk's flat charts from its nearest-axis labels (the
-// first flat solve, with turned-over triangles), untangled by each minimiser.
-TEST(UntangleFlatCharts, NewtonAndLbfgsOpenTheSameTriangles) {
+// first flat solve, with turned-over triangles).
+struct FandiskFlat {
+  PolygonMesh mesh;
+  Triangulation t;
+  std::vector<int> labels;
+  FlatCharts flat;
+};
+
+std::optional<FandiskFlat> fandisk_flat() {
   const std::string path = std::string(POLYCUBE_MESH_DATA) + "/fandisk.off";
-  if (!std::ifstream(path).good()) GTEST_SKIP() << "fandisk.off is missing: run `make data`";
-  const PolygonMesh mesh = read_mesh(path);
-  const Triangulation t = triangulate(mesh.vertices, mesh.faces);
-  const std::vector<int> labels = test_meshes::nearest_triangle_labels(mesh, t);
+  if (!std::ifstream(path).good()) return std::nullopt;
+  FandiskFlat f;
+  f.mesh = read_mesh(path);
+  f.t = triangulate(f.mesh.vertices, f.mesh.faces);
+  f.labels = test_meshes::nearest_triangle_labels(f.mesh, f.t);
+  f.flat =
+      test_meshes::flatten_from_input(f.mesh, f.t, f.labels, QualityMeasure(f.mesh.vertices, f.t.triangles, f.labels));
+  return f;
+}
+
+// Untangled by each minimiser.
+TEST(UntangleFlatCharts, NewtonAndLbfgsOpenTheSameTriangles) {
+  const std::optional<FandiskFlat> f = fandisk_flat();
+  if (!f) GTEST_SKIP() << "fandisk.off is missing: run `make data`";
+  const PolygonMesh& mesh = f->mesh;
+  const Triangulation& t = f->t;
+  const std::vector<int>& labels = f->labels;
+  const FlatCharts& flat = f->flat;
   const QualityMeasure quality(mesh.vertices, t.triangles, labels);
-  const FlatCharts flat = test_meshes::flatten_from_input(mesh, t, labels, quality);
   ASSERT_GT(flat.first_positions.rows(), 0);
   const FaceStates tangled = quality.face_states(flat.first_positions);
   ASSERT_GT(tangled.flipped_count, 0);
@@ -225,6 +250,32 @@ TEST(UntangleFlatCharts, NewtonAndLbfgsOpenTheSameTriangles) {
   EXPECT_LE(figures[1].collapsed_faces, figures[0].collapsed_faces + 2);
   EXPECT_LT(figures[1].area_error, figures[0].area_error + 0.005);
   EXPECT_LT(figures[1].edge_error, figures[0].edge_error + 0.005);
+}
+
+// The caller's stop is answered within one Newton iteration (a
+// factorisation), not when the untangling ends: what a user's Esc waits for
+// at a million triangles, where one untangling takes minutes.
+TEST(UntangleFlatCharts, StopsWithinOneNewtonIteration) {
+  const std::optional<FandiskFlat> f = fandisk_flat();
+  if (!f) GTEST_SKIP() << "fandisk.off is missing: run `make data`";
+  auto untangle = [&f](const std::function<bool()>& stop) {
+    return untangle_flat_charts(f->mesh.vertices, f->flat.first_positions, f->t.triangles, f->labels, kUntangleRounds,
+                                kUntangleLocalShare, {}, UntangleMinimiser::newton, stop);
+  };
+  int polls = 0;
+  const UntangledCharts whole = untangle([&polls] { return ++polls < 0; });
+  ASSERT_TRUE(whole.untangled);
+  EXPECT_FALSE(whole.stopped);
+  ASSERT_GT(whole.factorizations, 4);
+  EXPECT_GE(polls, whole.iterations + whole.rounds);  // before every round and every iteration
+  int asked = 0;
+  const UntangledCharts stopped = untangle([&asked] { return ++asked >= 3; });
+  EXPECT_EQ(asked, 3);  // no question after the first true
+  EXPECT_TRUE(stopped.stopped);
+  EXPECT_TRUE(stopped.refused);
+  EXPECT_FALSE(stopped.untangled);
+  EXPECT_LE(stopped.factorizations, 2);
+  EXPECT_EQ(stopped.rounds, 1);
 }
 
 }  // namespace

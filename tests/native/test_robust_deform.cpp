@@ -338,6 +338,43 @@ TEST(Robust, ContinuousFallbackFactorisesNothingPerIteration) {
   EXPECT_LE(longer.figures.folded_edges, longer.input_folded_edges);
 }
 
+// The caller's stop reaches into the untangling, whose rounds take minutes
+// at a million triangles: a stop first answered true once the first
+// flattening's untangling has begun ends it at its first round, and the run
+// with the iteration it is in.
+TEST(Robust, StopRequestedEndsAnUntanglingAtItsFirstRound) {
+  const Model model = load("bear");  // its first flattening is untangled, in 10 rounds
+  if (model.mesh.vertices.rows() == 0) GTEST_SKIP() << "libcgal-demo meshes missing";
+  DeformOptions o = options(Variant::kRobust);
+  o.relabel_collapsed = false;  // the first run is enough here
+  o.polish = false;
+  int seen = 0;  // iterations the callback saw
+  const IterationCallback count = [&seen](int iteration, const Vertices&, const Figures&) {
+    seen = iteration;
+    return true;
+  };
+  const DeformResult whole = deform(model.mesh, model.labels, o, count);
+  ASSERT_FALSE(whole.flatten_attempts.empty());
+  const DeformResult::FlattenAttempt first = whole.flatten_attempts.front();
+  ASSERT_GT(first.iteration, 1);
+  ASSERT_GT(first.untangle_rounds, 2);
+  // After the callback of the iteration before the attempt, the first
+  // question is the end of that iteration's own; the second comes from the
+  // untangling.
+  int asked = 0;  // questions since then, up to the first true (which stays)
+  o.stop_requested = [&] { return asked >= 2 || (seen == first.iteration - 1 && ++asked >= 2); };
+  seen = 0;
+  const DeformResult stopped = deform(model.mesh, model.labels, o, count);
+  EXPECT_TRUE(stopped.stopped);
+  EXPECT_EQ(asked, 2);
+  EXPECT_EQ(stopped.iterations, first.iteration);
+  ASSERT_EQ(stopped.flatten_attempts.size(), 1u);
+  EXPECT_EQ(stopped.flatten_attempts[0].untangle_rounds, 1);
+  EXPECT_FALSE(stopped.flatten_attempts[0].kept);
+  EXPECT_EQ(stopped.figures.flipped_faces, 0);
+  EXPECT_LT(stopped.stages.untangle.seconds, 0.5 * whole.stages.untangle.seconds);
+}
+
 // The step control's trials ask only whether a shape folds: the same answer
 // as comparing full face states.
 TEST(Robust, FoldsBeyondAgreesWithFaceStates) {

@@ -83,19 +83,24 @@ def test_callback_sees_each_iteration_and_can_stop(native, sphere):
 def test_stop_ends_the_further_runs_and_keeps_the_first(native, real_mesh):
     # The eight's automatic labels collapse faces in the first run; the runs
     # with them relabelled (stage 8) are silent, so only `stop` can end them.
+    # A stop once the first run has ended (as Esc would be) ends them before
+    # they start; a stop from the start ends the first run after its first
+    # iteration.
     vertices, indices, sizes = real_mesh("eight")
     labels = native.auto_labels(vertices, indices, sizes)
-    once = native.deform(vertices, indices, sizes, labels, relabel_collapsed=False)["report"]
+    once = native.deform(vertices, indices, sizes, labels, relabel_collapsed=False, polish=False)["report"]
     assert once["converged"] and once["collapsed_faces"] > 0
-    polls = []
+    seen = [0]
 
-    def stop():
-        polls.append(True)
-        return True
+    def watch(iteration, positions, figures):
+        seen[0] = iteration
 
-    stopped = native.deform(vertices, indices, sizes, labels, stop=stop)
-    assert polls and stopped["report"]["second_run_iterations"] == 0
+    stopped = native.deform(vertices, indices, sizes, labels, callback=watch,
+                            stop=lambda: seen[0] >= once["iterations"])
+    assert stopped["report"]["stopped"] and stopped["report"]["second_run_iterations"] == 0
     assert stopped["report"]["collapsed_faces"] == once["collapsed_faces"]
+    at_once = native.deform(vertices, indices, sizes, labels, stop=lambda: True)["report"]
+    assert at_once["stopped"] and at_once["iterations"] == 1
     further = native.deform(vertices, indices, sizes, labels, stop=lambda: False)["report"]
     assert further["second_run_iterations"] > 0 and further["collapsed_area"] < 0.5 * once["collapsed_area"]
 
