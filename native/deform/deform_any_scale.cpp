@@ -3,6 +3,7 @@
 // the callback sees) moved back. The figures are scale-free already. The
 // robust variant's second run with collapsed faces relabelled is here too:
 // it wraps whole runs.
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <memory>
 #include <utility>
@@ -151,6 +152,37 @@ Figures given_labels_figures(const PolygonMesh& mesh, const Triangulation& trian
   return QualityMeasure(mesh.vertices, triangulation.triangles, triangle_labels).measure(positions);
 }
 
+// The share of the input's area in collapsed polygons of `positions`: a
+// polygon is collapsed when its triangles' output area, together, falls
+// below kCollapsedAreaRatio of its scaled input area. On a mesh of
+// triangles this is Figures::collapsed_area; on a quad mesh a quad bent to a
+// triangle's shape keeps its area, and a run can collapse fewer triangles
+// but more quads (Suzanne: 2.72% -> 2.67% of the area in collapsed
+// triangles, 0.37% -> 1.00% in collapsed quads).
+double collapsed_polygon_area(const PolygonMesh& mesh, const Triangulation& triangulation, const Vertices& positions) {
+  const int faces = mesh.faces.count();
+  std::vector<double> before(faces, 0.0), after(faces, 0.0);
+  double total_before = 0.0, total_after = 0.0;
+  for (Eigen::Index t = 0; t < triangulation.triangles.rows(); ++t) {
+    const auto area = [&](const Vertices& x) {
+      const Eigen::Vector3d a = x.row(triangulation.triangles(t, 0)).transpose();
+      const Eigen::Vector3d b = x.row(triangulation.triangles(t, 1)).transpose();
+      const Eigen::Vector3d c = x.row(triangulation.triangles(t, 2)).transpose();
+      return 0.5 * (b - a).cross(c - a).norm();
+    };
+    const int f = triangulation.face_of_triangle[t];
+    const double in = area(mesh.vertices), out = area(positions);
+    before[f] += in, after[f] += out;
+    total_before += in, total_after += out;
+  }
+  if (!(total_before > 0.0)) return 0.0;
+  const double scale2 = total_after > 0.0 ? total_after / total_before : 1.0;
+  double collapsed = 0.0;
+  for (int f = 0; f < faces; ++f)
+    if (after[f] <= kCollapsedAreaRatio * scale2 * before[f] || after[f] == 0.0) collapsed += before[f];
+  return collapsed / total_before;
+}
+
 // `again` (a silent run) replaces `result`: to the caller it is one more
 // iteration, seen once by the callback, its own iterations counted in
 // `second_run_iterations`; its figures against the labels the caller gave.
@@ -178,7 +210,8 @@ void keep_as_next_iteration(const PolygonMesh& mesh, const Triangulation& triang
 // the result's on some faces), kept as the next iteration when it is exact,
 // fold-free and collapses less area, and once stage 8 has stalled, its edge
 // and area errors and largest area ratio within kStalledErrorSlack and
-// kStalledRatioSlack of the result's (then the faces it relabelled join
+// kStalledRatioSlack of the result's, and no more area in collapsed
+// polygons (then the faces it relabelled join
 // `relabelled_faces`, and what it leaves for a polish replaces `finished`);
 // else only its cost is added to `result`. Returns whether it was kept; not
 // run (and not kept) when `budget` is spent.
@@ -194,7 +227,9 @@ bool keep_if_better(const PolygonMesh& mesh, const RerunMesh& shared, const std:
   const bool worse_errors =
       budget.runs_left >= 0 && (again.figures.edge_error > kStalledErrorSlack * result.figures.edge_error ||
                                 again.figures.area_error > kStalledErrorSlack * result.figures.area_error ||
-                                again.figures.max_area_ratio > kStalledRatioSlack * result.figures.max_area_ratio);
+                                again.figures.max_area_ratio > kStalledRatioSlack * result.figures.max_area_ratio ||
+                                collapsed_polygon_area(mesh, shared.triangulation, again.positions) >
+                                    collapsed_polygon_area(mesh, shared.triangulation, result.positions));
   if (!again.converged || !(again.figures.collapsed_area < result.figures.collapsed_area) || worse_errors) {
     add_cost(result, again);
     return false;
