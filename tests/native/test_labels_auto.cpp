@@ -344,14 +344,19 @@ TEST_P(AutoLabelsFlatten, ExactFoldFreeAndLittleCollapsed) {
   EXPECT_LE(r.figures.folded_edges, r.input_folded_edges);
   EXPECT_LT(r.figures.collapsed_area, model.max_collapsed_area);
   EXPECT_LT(r.figures.collapsed_faces, r.triangles / 100);
-  EXPECT_TRUE(r.relabelled_faces.empty());
+  // Stage 8's further runs relabel a few faces at most (docs/design.md
+  // section 2.6: cactus 4, mushroom 5, once its stalled rounds cut the
+  // collapsed faces again).
+  EXPECT_LT(r.relabelled_faces.size(), static_cast<size_t>(r.triangles / 100));
 }
 
 // Straightening and unsqueezing took these from 1.6% (cactus), 0.6% (joint)
-// and 0.4% (mushroom) of the area collapsed to the figures below.
+// and 0.4% (mushroom) of the area collapsed to 0.36%, 0% and 0.11%; stage
+// 8's cut of the collapsed faces where its rounds stall (docs/design.md
+// section 2.6) to 0.14% and 0% for cactus and mushroom.
 INSTANTIATE_TEST_SUITE_P(Models, AutoLabelsFlatten,
-                         ::testing::Values(Flattened{"cactus", 0.005}, Flattened{"joint", 0.001},
-                                           Flattened{"mushroom", 0.005}, Flattened{"handle", 0.001}),
+                         ::testing::Values(Flattened{"cactus", 0.002}, Flattened{"joint", 0.001},
+                                           Flattened{"mushroom", 0.001}, Flattened{"handle", 0.001}),
                          [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace
