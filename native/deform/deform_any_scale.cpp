@@ -90,11 +90,13 @@ struct RerunMesh {
       : triangulation(triangulate(mesh.vertices, mesh.faces)),
         adjacency(mesh_adjacency(mesh.faces, static_cast<int>(mesh.vertices.rows()))),
         neighbours(face_neighbours(adjacency, mesh.faces.count())),
-        edges_of_face(face_edges(adjacency, mesh.faces.count())) {}
+        edges_of_face(face_edges(adjacency, mesh.faces.count())),
+        energy(label_energy(mesh, mesh.vertices, adjacency, kDefaultCompactness)) {}
   Triangulation triangulation;
   MeshAdjacency adjacency;
   std::vector<std::vector<int>> neighbours;
   std::vector<std::vector<int>> edges_of_face;
+  LabelEnergy energy;  // the labeller's, for the re-cut and the repair
 };
 
 // What `from` cost, added to `into`: a silent run's time, solves and
@@ -125,15 +127,12 @@ void add_cost(DeformResult& into, const DeformResult& from) {
 
 // A run the caller does not see (its iterations start again from the
 // input, and a caller that keeps every iteration, as shape keys, would get a
-// run it may not keep); only `stop_requested` reaches it. Not converged
-// unless it is an exact polycube with nothing turned over and no more edges
-// folded than the input's. What it leaves for a polish goes to `finished`.
+// run it may not keep); only `stop_requested` (polled by the run itself)
+// reaches it. Not converged unless it is an exact polycube with nothing
+// turned over and no more edges folded than the input's. What it leaves for a polish goes to `finished`.
 DeformResult silent_run(const PolygonMesh& mesh, const std::vector<int>& labels, const DeformOptions& options,
                         std::unique_ptr<FinishedRun>& finished) {
-  IterationCallback stop_only;
-  if (options.stop_requested)
-    stop_only = [&options](int, const Vertices&, const Figures&) { return !options.stop_requested(); };
-  DeformResult run = deform_in_unit_box(mesh, labels, options, stop_only, finished);
+  DeformResult run = deform_in_unit_box(mesh, labels, options, IterationCallback{}, finished);
   run.converged = !run.stopped && run.converged && run.figures.flipped_faces == 0 &&
                   run.figures.folded_edges <= run.input_folded_edges;
   return run;
@@ -153,8 +152,7 @@ Figures given_labels_figures(const PolygonMesh& mesh, const Triangulation& trian
 }
 
 // The share of the input's area in collapsed polygons of `positions`: a
-// polygon is collapsed when its triangles' output area, together, falls
-// below kCollapsedAreaRatio of its scaled input area. On a mesh of
+// polygon is collapsed (is_collapsed) by its triangles' output area together. On a mesh of
 // triangles this is Figures::collapsed_area; on a quad mesh a quad bent to a
 // triangle's shape keeps its area, and a run can collapse fewer triangles
 // but more quads (Suzanne: 2.72% -> 2.67% of the area in collapsed
@@ -179,7 +177,7 @@ double collapsed_polygon_area(const PolygonMesh& mesh, const Triangulation& tria
   const double scale2 = total_after > 0.0 ? total_after / total_before : 1.0;
   double collapsed = 0.0;
   for (int f = 0; f < faces; ++f)
-    if (after[f] <= kCollapsedAreaRatio * scale2 * before[f] || after[f] == 0.0) collapsed += before[f];
+    if (is_collapsed(after[f], before[f], scale2)) collapsed += before[f];
   return collapsed / total_before;
 }
 
@@ -253,8 +251,8 @@ bool keep_if_better(const PolygonMesh& mesh, const RerunMesh& shared, const std:
 // whether a run was kept (keep_if_better).
 bool try_moves(const PolygonMesh& mesh, const RerunMesh& shared, const std::vector<int>& labels,
                const DeformOptions& options, const IterationCallback& callback, std::vector<int> moved,
-               const std::vector<int>& changed, LabelEnergy energy, DeformResult& result,
-               std::unique_ptr<FinishedRun>& finished, RerunBudget& budget) {
+               const std::vector<int>& changed, DeformResult& result, std::unique_ptr<FinishedRun>& finished,
+               RerunBudget& budget) {
   if (changed.empty()) return false;
   const MeshAdjacency& adjacency = shared.adjacency;
   const int score = violation_score(adjacency, result.labels);
@@ -275,6 +273,7 @@ bool try_moves(const PolygonMesh& mesh, const RerunMesh& shared, const std::vect
   // then 0.91%). Their opposites are allowed: with them barred too, the
   // armadillo's third further run collapsed more and it ended at 4.2% of
   // its area collapsed; without, at 0.7%.
+  LabelEnergy energy = shared.energy;
   for (int f : changed) energy.data(f, result.labels[f]) += kBarred;
   const std::vector<int> repaired = repair_charts(adjacency, energy, std::move(moved), kRepairMoves);
   if (violation_score(adjacency, repaired) > score) return false;
@@ -307,10 +306,9 @@ bool rerun_collapsed(const PolygonMesh& mesh, const RerunMesh& shared, const std
   std::vector<char> collapsed(mesh.faces.count(), 0);
   for (size_t t = 0; t < states.collapsed.size(); ++t)
     if (states.collapsed[t]) collapsed[triangulation.face_of_triangle[t]] = 1;
-  const LabelEnergy energy = label_energy(mesh, mesh.vertices, shared.adjacency, kDefaultCompactness);
   std::vector<int> moved = result.labels;
   std::vector<int> changed = relabel_collapsed_faces(shared.neighbours, collapsed, moved);
-  if (try_moves(mesh, shared, labels, options, callback, moved, changed, energy, result, finished, budget)) return true;
+  if (try_moves(mesh, shared, labels, options, callback, moved, changed, result, finished, budget)) return true;
   // The neighbours' labels did not help (or reached no collapsed face): a
   // thin part the labeller gave one chart has none of the labels its sides
   // need among its neighbours, and a boundary moved face by face can stall
@@ -318,8 +316,8 @@ bool rerun_collapsed(const PolygonMesh& mesh, const RerunMesh& shared, const std
   if (options.stop_requested && options.stop_requested()) return false;
   if (budget.runs_left < 0) budget.runs_left = static_cast<int>(kStalledRunsShare * result.stages.set_up.count);
   moved = result.labels;
-  changed = recut_collapsed_faces(shared.neighbours, energy, collapsed, moved);
-  return try_moves(mesh, shared, labels, options, callback, moved, changed, energy, result, finished, budget);
+  changed = recut_collapsed_faces(shared.neighbours, shared.energy, collapsed, moved);
+  return try_moves(mesh, shared, labels, options, callback, moved, changed, result, finished, budget);
 }
 
 // Whether stage 9 can change anything: the bound it raises refused one of
@@ -353,7 +351,7 @@ void polish(const PolygonMesh& mesh, const std::vector<int>& labels, const Defor
     Deformation& d = *finished->deformation;
     d.x = result.positions;
     d.result = DeformResult();
-    d.factorization.release();  // restored by conclude() for the reference timings alone
+    d.factorization.release();    // restored by conclude() for the reference timings alone
     d.acceptable_x = Vertices();  // the run's fallback, of no use to the polish
     run = std::make_unique<RobustRun>(d, Assembled{});
     factored = std::move(finished->planes);

@@ -100,7 +100,7 @@ void QualityMeasure::update_face_state(const Vertices& output, Eigen::Index f, F
   const Eigen::Vector3d normal = doubled_normal(output, triangles_, f);
   const double area = 0.5 * normal.norm();
   s.area[f] = area;
-  s.collapsed[f] = area <= kCollapsedAreaRatio * s.scale2 * input_area_[f] || area == 0.0;
+  s.collapsed[f] = is_collapsed(area, input_area_[f], s.scale2);
   s.flipped[f] = 0;
   s.deviation_deg[f] = 0.0;
   if (s.collapsed[f]) return;
@@ -162,7 +162,7 @@ double QualityMeasure::flags_from(const TriangleAreas& areas, double total, std:
   flipped.resize(count);
 #pragma omp parallel for num_threads(parallel_threads(count))
   for (Eigen::Index f = 0; f < count; ++f) {
-    collapsed[f] = area[f] <= kCollapsedAreaRatio * scale2 * input_area_[f] || area[f] == 0.0;
+    collapsed[f] = is_collapsed(area[f], input_area_[f], scale2);
     flipped[f] = !collapsed[f] && areas.along[f] < 0.0;
   }
   return scale2;

@@ -32,6 +32,13 @@ namespace polycube {
 
 constexpr double kCollapsedAreaRatio = 1e-3;
 
+// A face (triangle or polygon) of output area `area` is collapsed when it
+// keeps no more than kCollapsedAreaRatio of its input area at the output's
+// scale (`scale2`: output over input total area), or none at all.
+inline bool is_collapsed(double area, double input_area, double scale2) {
+  return area <= kCollapsedAreaRatio * scale2 * input_area || area == 0.0;
+}
+
 struct Figures {
   double normal_deviation_max_deg = 0.0;
   double normal_deviation_mean_deg = 0.0;

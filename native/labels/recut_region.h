@@ -8,7 +8,7 @@
 // charts smooth boundaries of its own, among the labels off their axis; stage
 // 8 (docs/design.md section 2.6) gives a cluster of collapsed faces (a thin
 // part labelled with one chart, flattened to a line) the charts its normals
-// ask for, each face barred from the label it collapsed with.
+// ask for (recut_collapsed_faces.h).
 //
 // Inputs:
 //   energy  the labeller's (label_energy.h), one site per face
