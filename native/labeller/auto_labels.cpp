@@ -68,21 +68,6 @@ std::vector<int> unreverse_charts(const PolygonMesh& mesh, const MeshAdjacency& 
   return invalid_violations(validate_labels(mesh, moved)) < invalid_violations(validation) ? moved : labels;
 }
 
-// The share of the faces whose labels differ.
-double relabelled_share(const std::vector<int>& before, const std::vector<int>& after) {
-  long changed = 0;
-  for (size_t f = 0; f < before.size(); ++f) changed += before[f] != after[f];
-  return before.empty() ? 0.0 : static_cast<double>(changed) / static_cast<double>(before.size());
-}
-
-// Unsqueezing relabels the squeezed faces and what their repairs move
-// around them: at most 7% of the faces on the models of docs/design.md
-// section 3.3 (the part's 346), 2% on most. On the cheese (genus 133, its
-// repairs short of the polycube conditions) its repairs went on merging the
-// walls of its tunnels until two charts held 97% of the faces, a third of
-// them facing away from their labels.
-constexpr double kMostUnsqueezed = 0.2;
-
 // Steps 3 to 7 of the labeller (docs/design.md section 3.3) on the graph
 // cut's labels.
 std::vector<int> repaired_labels(const PolygonMesh& mesh, const MeshAdjacency& adjacency,
@@ -101,19 +86,18 @@ std::vector<int> repaired_labels(const PolygonMesh& mesh, const MeshAdjacency& a
     }
     // Squeezed triangles, then what relabelling them broke; a few rounds,
     // as each repair can leave new teeth. Kept only when the polycube
-    // conditions hold as well as before, and when it stayed local: its
-    // repairs can go on where the first ones stopped and merge whole charts.
+    // conditions hold as well as before. Only on labels that meet them: on
+    // others the repairs would go on where the first ones stopped, merging
+    // whole charts.
     const int violations = violation_score(adjacency, labels);
     std::vector<int> unsqueezed = labels;
-    bool local = true;
-    for (int round = 0; round < 3 && local; ++round) {
+    for (int round = 0; round < 3 && violations == 0; ++round) {
       if (unsqueeze_labels(vertex_count, triangulation.triangles, triangulation.face_of_triangle, unsqueezed) == 0)
         break;
       unsqueezed = repair_charts(adjacency, energy, std::move(unsqueezed), options.repair_moves);
       unsqueezed = merge_tiny_charts(adjacency, energy, geometry, std::move(unsqueezed), options.repair_moves);
-      local = relabelled_share(labels, unsqueezed) <= kMostUnsqueezed;
     }
-    if (local && violation_score(adjacency, unsqueezed) <= violations) labels = std::move(unsqueezed);
+    if (violation_score(adjacency, unsqueezed) <= violations) labels = std::move(unsqueezed);
   }
   label_open_caps(mesh, adjacency, labels);
   if (options.repair)
