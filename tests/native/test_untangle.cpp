@@ -165,6 +165,49 @@ TEST(UntangleFlatCharts, RoundsGoLocalForAFewTrianglesWithoutRoomNotForAShareOfT
   EXPECT_TRUE(b.untangled);
 }
 
+TEST(UntangleFlatCharts, AFewSliversAreOpenedLocallyAndTheRestOfTheMapKept) {
+  // A 16 x 16 x 8 block (2,048 triangles) whose top has one vertex moved
+  // onto its neighbour: the two triangles between them collapse, a few
+  // stretch. Newton's rounds (the minimiser from 100,000 triangles on)
+  // start local and end once those have room: every vertex beyond the
+  // local rings stays where the caller put it, bit for bit (a global round
+  // would move the whole map).
+  std::set<std::array<int, 3>> voxels;
+  test_meshes::add_block(voxels, {0, 0, 0}, 16, 16, 8);
+  const test_meshes::LabelledMesh m = test_meshes::voxel_surface(voxels);
+  const Triangulation t = triangulate(m.mesh.vertices, m.mesh.faces);
+  Block b{m.mesh.vertices, t.triangles, {}};
+  for (int f : t.face_of_triangle) b.labels.push_back(m.labels[f]);
+  ASSERT_EQ(b.triangles.rows(), 2048);
+  Vertices crushed = b.vertices;
+  int moved = -1;
+  for (Eigen::Index v = 0; v < crushed.rows(); ++v)
+    if (crushed(v, 0) == 8.0 && crushed(v, 1) == 8.0 && crushed(v, 2) == 8.0) moved = static_cast<int>(v);
+  ASSERT_GE(moved, 0);
+  crushed(moved, 0) = 9.0;
+  const QualityMeasure quality(b.vertices, b.triangles, b.labels);
+  ASSERT_GT(quality.measure(crushed).collapsed_faces, 0);
+  ASSERT_TRUE(flat(crushed, b));
+
+  const UntangledCharts u = untangle_flat_charts(b.vertices, crushed, b.triangles, b.labels, kUntangleRounds,
+                                                 kUntangleLocalShare, {}, UntangleMinimiser::newton);
+  EXPECT_TRUE(u.untangled);
+  EXPECT_EQ(u.put_on_a_line, 0);
+  EXPECT_GT(u.rounds, 0);
+  EXPECT_EQ(u.local_rounds, u.rounds);
+  EXPECT_TRUE(flat(u.positions, b));
+  const Figures after = quality.measure(u.positions);
+  EXPECT_EQ(after.collapsed_faces, 0);
+  EXPECT_EQ(after.flipped_faces, 0);
+  int far = 0;
+  for (Eigen::Index v = 0; v < crushed.rows(); ++v) {
+    if ((b.vertices.row(v) - b.vertices.row(moved)).lpNorm<Eigen::Infinity>() <= 4.0) continue;
+    ++far;
+    EXPECT_EQ(u.positions.row(v), crushed.row(v));
+  }
+  EXPECT_GT(far, 900);  // of 1,026
+}
+
 TEST(UntangleFlatCharts, StopsOnceTheCollapsesPassTheCallersBound) {
   // The block with a triangle facing the wrong way (above): it ends on a
   // line. Bounded at no triangle on a line, the rounds stop when it is put
