@@ -40,10 +40,10 @@ struct Block {
   std::vector<int> labels;  // per triangle
 };
 
-// A 4 x 4 x 2 block of voxels, triangulated: an exact polycube of itself.
-Block block() {
+// A 4 x 4 x 2 (or nx x ny x nz) block of voxels, triangulated: an exact polycube of itself.
+Block block(int nx = 4, int ny = 4, int nz = 2) {
   std::set<std::array<int, 3>> voxels;
-  test_meshes::add_block(voxels, {0, 0, 0}, 4, 4, 2);
+  test_meshes::add_block(voxels, {0, 0, 0}, nx, ny, nz);
   const test_meshes::LabelledMesh m = test_meshes::voxel_surface(voxels);
   const Triangulation t = triangulate(m.mesh.vertices, m.mesh.faces);
   Block b{m.mesh.vertices, t.triangles, {}};
@@ -172,12 +172,7 @@ TEST(UntangleFlatCharts, AFewSliversAreOpenedLocallyAndTheRestOfTheMapKept) {
   // start local and end once those have room: every vertex beyond the
   // local rings stays where the caller put it, bit for bit (a global round
   // would move the whole map).
-  std::set<std::array<int, 3>> voxels;
-  test_meshes::add_block(voxels, {0, 0, 0}, 16, 16, 8);
-  const test_meshes::LabelledMesh m = test_meshes::voxel_surface(voxels);
-  const Triangulation t = triangulate(m.mesh.vertices, m.mesh.faces);
-  Block b{m.mesh.vertices, t.triangles, {}};
-  for (int f : t.face_of_triangle) b.labels.push_back(m.labels[f]);
+  const Block b = block(16, 16, 8);
   ASSERT_EQ(b.triangles.rows(), 2048);
   Vertices crushed = b.vertices;
   int moved = -1;
