@@ -169,7 +169,7 @@ std::vector<int> auto_labels(const PolygonMesh& input, const AutoLabelOptions& o
   }
   // The repairs trade fidelity to the normals for the polycube conditions:
   // where they end short of them, the trade bought nothing and the cut's own
-  // labels flatten better (the cheese: exact, where the repaired labels
+  // labels flatten better (the cheese: exact, where the repaired labels'
   // run ends at 159 degrees; docs/design.md section 3.3).
   if (options.repair && invalid_violations(validate_labels(mesh, repaired)) > 0) {
     AutoLabelOptions cut_only = options;
