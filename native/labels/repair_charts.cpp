@@ -195,13 +195,12 @@ struct Stuck {
 // counts one per face) is a last resort: the greedy takes it only when none of
 // the violations after it has a cheaper fix. Violations are taken smallest
 // chart first, and the cheapest fix of a small chart can be to relabel a large
-// one: on the cow, a chart of 6 faces with too few neighbours was fixed by
-// absorbing it and its neighbours into the largest, which relabelled the whole
-// back (782 faces, facing +Y) -X at 15% of the surface's energy; the
-// deformation then collapsed 4.7% of the area. Fixing the other violations
-// first, it needs no such move (0.24%). At 2% the cheese's one such move
-// (2.5%) was deferred and its labels ended invalid (docs/design.md section
-// 3.3, step 3).
+// one: on the cow, a chart of 6 faces with too few neighbours was fixed by a
+// move of 782 faces (with it the whole back, facing +Y) turned -X, at 15% of
+// the surface's energy; the deformation then collapsed 4.7% of the area.
+// Fixing the other violations first, it needs no such move (0.24%). At 2% the
+// cheese's one such move (2.5%) was deferred and its labels ended invalid
+// (docs/design.md section 3.3, step 3).
 constexpr double kCostlyMove = 0.03;
 // ... looking for a cheaper fix at most this many violations past the first
 // that only costly moves fix: each violation looked at costs its candidate

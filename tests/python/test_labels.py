@@ -104,12 +104,12 @@ def test_automatic_labels_leave_no_chart_reversed(native):
 
 
 def test_repair_leaves_costly_moves_last(native, real_mesh):
-    """The cow's repair fixed a chart of 6 faces by absorbing it and its
-    neighbours into the largest: the whole back, facing +Y, became -X. A
+    """The cow's repair fixed a chart of 6 faces by a move of 782 faces:
+    the whole back, facing +Y, became -X with it. A
     fifth of the cow's area then lay more than 60 degrees from its label's
     axis, and the deformation collapsed 4.7% of the area. A move that costly
-    is now taken only when no cheaper one fixes any violation (section 3.3,
-    step 3): 8% of the area that far from its label, 0.24% collapsed."""
+    now waits while one of the next violations has a cheaper fix (section
+    3.3, step 3): 8% of the area that far from its label, 0.24% collapsed."""
     vertices, indices, sizes = real_mesh("cow")
     labels = native.auto_labels(vertices, indices, sizes)
     assert native.validate_labels(vertices, indices, sizes, labels)["valid"]
