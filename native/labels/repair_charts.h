@@ -1,7 +1,10 @@
 // Local repair of a labeling that breaks the polycube conditions
 // (validate_labels). Violations are taken smallest chart first; for the first
 // one some candidate move improves, the move with the least energy added per
-// unit of score removed is applied, and the labeling is validated again.
+// unit of score removed is applied, and the labeling is validated again. A
+// move costly enough to relabel a large chart (over 3% of the surface's
+// energy per unit) waits while one of the next few violations has a cheaper
+// fix: the cow's whole back once turned -X to fix a chart of 6 faces.
 // Candidate moves:
 // - a chart with too few neighbours: the whole chart, or it and one
 //   neighbour, takes another label (merging into a neighbour, or becoming a
