@@ -42,7 +42,6 @@ constexpr int kNewtonIterations = 50;
 // triangles the barrier still holds inverted.
 constexpr double kNewtonSettled = 1e-3;
 // From this many triangles on, the rounds are Newton's (automatic, header).
-constexpr long kNewtonFrom = 100'000;
 // Room: a determinant (area over scaled input area) above this. Far below
 // the collapsed threshold (quality.h), far above rounding: triangles that
 // the charts hold on a line through a chain of shared unknowns come out
@@ -347,7 +346,7 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
   };
   const bool newton_rounds =
       minimiser == UntangleMinimiser::newton ||
-      (minimiser == UntangleMinimiser::automatic && static_cast<long>(active.size()) >= kNewtonFrom);
+      (minimiser == UntangleMinimiser::automatic && static_cast<long>(active.size()) >= kUntangleNewtonFrom);
   // Minimises the energy of `list` over the first `free_count` entries of
   // `at` (the others held); returns the energy reached.
   NewtonMinimizer global_newton;

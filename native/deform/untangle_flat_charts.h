@@ -77,6 +77,8 @@ struct CollapseBound {
 // for bit.
 enum class UntangleMinimiser { automatic, newton, lbfgs };
 
+// From this many triangles on, `automatic` rounds are Newton's (above).
+constexpr long kUntangleNewtonFrom = 100'000;
 constexpr int kUntangleRounds = 30;
 constexpr double kUntangleLocalShare = 0.002;
 
