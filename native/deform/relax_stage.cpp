@@ -55,15 +55,17 @@ Vertices relaxed_target(RobustRun& run, ChartPlanes& planes) {
 bool untangle_collapsed(RobustRun& run, int iteration, bool found, bool release) {
   Deformation& d = run.d;
   DeformResult& result = d.result;
-  if (!((!found || run.relaxed) && !run.untangle_tried && count(run.state.collapsed) > 0 &&
-        (!result.untangled || d.quality.collapsed_area_fraction(run.state) > kUntangleAgainAbove)))
+  if ((found && !run.relaxed) || run.untangle_tried) return found;
+  const int collapsed = count(run.state.collapsed);
+  if (collapsed == 0 || (result.untangled && d.quality.collapsed_area_fraction(run.state) <= kUntangleAgainAbove))
     return found;
   run.untangle_tried = true;
   if (release) run.planes->release();
   CollapseBound bound;
-  bound.triangles = count(run.state.collapsed) - 1;  // kept only with fewer collapsed, below
+  bound.triangles = collapsed - 1;  // kept only with fewer collapsed, below
   UntangleStep opened = untangle_step(run, d.x, bound);
-  if (opened.fold_free && count(opened.states.collapsed) < count(run.state.collapsed)) {
+  const int left = count(opened.states.collapsed);
+  if (opened.fold_free && left < collapsed) {
     d.x = std::move(opened.positions);
     run.state = std::move(opened.states);
     run.planes = run.charts_like(*run.planes);
@@ -72,7 +74,7 @@ bool untangle_collapsed(RobustRun& run, int iteration, bool found, bool release)
     found = true;
     run.relaxed = false;
     // Nothing left for the same charts without collapses to open.
-    if (count(run.state.collapsed) == 0) run.uncollapsed = true;
+    if (left == 0) run.uncollapsed = true;
   }
   result.seconds.solve += d.phase.lap();
   return found;

@@ -433,6 +433,17 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
     return local_share > 0.0 && without_room <= std::max(local_share * triangles_now,
                                                          std::min(kLocalCount, kLocalCountShare * triangles_now));
   };
+  // The triangles without room at `at`; `smallest`: the least determinant.
+  auto without_room = [&](const Eigen::VectorXd& at, double& smallest) {
+    smallest = std::numeric_limits<double>::infinity();
+    std::vector<int> no_room;
+    for (size_t a = 0; a < active.size(); ++a) {
+      const double d = determinant(active[a], at);
+      smallest = std::min(smallest, d);
+      if (!(d > kRoom)) no_room.push_back(static_cast<int>(a));
+    }
+    return no_room;
+  };
   auto seed_with = [&](const std::vector<int>& no_room) {
     for (const int a : no_room)
       for (const auto& corner : all[source[a]].unknown)
@@ -452,14 +463,9 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
   // (fandisk's relaxed slivers: 0.132, 0.153 without it).
   bool only_local = false;
   if (newton_rounds) {
-    std::vector<int> no_room;
-    bool turned_over = false;
-    for (size_t a = 0; a < active.size(); ++a) {
-      const double d = determinant(active[a], y);
-      turned_over = turned_over || d < -kRoom;
-      if (!(d > kRoom)) no_room.push_back(static_cast<int>(a));
-    }
-    if (!turned_over && !no_room.empty() && few(no_room.size())) {
+    double smallest = 0.0;
+    const std::vector<int> no_room = without_room(y, smallest);
+    if (!(smallest < -kRoom) && !no_room.empty() && few(no_room.size())) {
       seed_with(no_room);
       only_local = true;
     }
@@ -485,13 +491,8 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
       reached = energy_of(active, y, nullptr, nullptr);
     }
     if (stopped()) break;
-    double smallest = std::numeric_limits<double>::infinity();
-    std::vector<int> no_room;
-    for (size_t a = 0; a < active.size(); ++a) {
-      const double d = determinant(active[a], y);
-      smallest = std::min(smallest, d);
-      if (!(d > kRoom)) no_room.push_back(static_cast<int>(a));
-    }
+    double smallest = 0.0;
+    const std::vector<int> no_room = without_room(y, smallest);
     for (int u = 0; u < unknowns; ++u) x[u] = y[slot[u]];
     const double decrease =
         std::isfinite(previous) ? std::max(1.0 - reached / previous, kMinEpsDecrease) : kMinEpsDecrease;

@@ -157,21 +157,22 @@ std::vector<int> auto_labels(const PolygonMesh& input, const AutoLabelOptions& o
   // as any small chart is tried too, and the labels with fewer violations
   // kept (mpi, 52 faces: one chart otherwise).
   const bool on_axis = std::any_of(geometry.on_axis.begin(), geometry.on_axis.end(), [](int l) { return l >= 0; });
-  if (options.repair && on_axis) {
-    const int violations = invalid_violations(validate_labels(mesh, repaired));
-    if (violations > 0) {
-      FaceGeometry merged_geometry = geometry;
-      merged_geometry.on_axis.assign(merged_geometry.on_axis.size(), -1);
-      std::vector<int> merged =
-          repaired_labels(mesh, adjacency, triangulation, energy, merged_geometry, labels, options);
-      if (invalid_violations(validate_labels(mesh, merged)) < violations) repaired = std::move(merged);
+  int violations = options.repair ? invalid_violations(validate_labels(mesh, repaired)) : 0;
+  if (on_axis && violations > 0) {
+    FaceGeometry merged_geometry = geometry;
+    merged_geometry.on_axis.assign(merged_geometry.on_axis.size(), -1);
+    std::vector<int> merged = repaired_labels(mesh, adjacency, triangulation, energy, merged_geometry, labels, options);
+    const int merged_violations = invalid_violations(validate_labels(mesh, merged));
+    if (merged_violations < violations) {
+      repaired = std::move(merged);
+      violations = merged_violations;
     }
   }
   // The repairs trade fidelity to the normals for the polycube conditions:
   // where they end short of them, the trade bought nothing and the cut's own
   // labels flatten better (the cheese: exact, where the repaired labels'
   // run ends at 159 degrees; docs/design.md section 3.3).
-  if (options.repair && invalid_violations(validate_labels(mesh, repaired)) > 0) {
+  if (violations > 0) {
     AutoLabelOptions cut_only = options;
     cut_only.repair = false;
     repaired = repaired_labels(mesh, adjacency, triangulation, energy, geometry, std::move(labels), cut_only);
