@@ -40,7 +40,9 @@ class ChartPlanes {
   // Reduces L (positive definite, e.g. with the diagonal shift of
   // deformation.h) to the flat-chart positions and factorises it, once per axis.
   // Called again after collapse() with the same L, it redoes only the axes
-  // whose charts changed. Throws Error when a factorisation fails.
+  // whose charts changed, each ordered from the charts' own system (whose
+  // unknowns its own join) rather than analysed afresh. Throws Error when a
+  // factorisation fails.
   void factorize(const Eigen::SparseMatrix<double>& laplacian);
   int factorizations() const { return factorizations_; }
   // Calls of solve() (three back-substitutions each, one per axis).
@@ -58,7 +60,8 @@ class ChartPlanes {
   // left are factorised by the next factorize(). What a polish does with
   // the planes of the run it polishes (polish_stage.h): B0's run ends on
   // the very charts the polish solves on, three factorisations of its
-  // eleven.
+  // eleven. Its charts' orderings, where this one knows none, order the
+  // systems here (factorize()).
   void share_factors(const ChartPlanes& other);
   // Frees the factors (shared ones stay with their other owner) until the
   // next factorize(), which redoes every axis.
@@ -99,9 +102,12 @@ class ChartPlanes {
   std::array<std::shared_ptr<const SparseCholesky>, 3> cholesky_;
   std::array<bool, 3> changed_ = {true, true, true};
   // Per axis: nothing collapsed since the construction (the charts alone),
-  // and the ordering of the charts' system once known.
+  // and the ordering of the charts' system once known, with each vertex's
+  // unknown in it: the systems with collapses, whose unknowns join the
+  // charts', are ordered from it.
   std::array<bool, 3> charts_only_ = {true, true, true};
   std::array<SparseCholesky::Ordering, 3> chart_orderings_;
+  std::array<std::vector<int>, 3> chart_unknown_;
   int factorizations_ = 0;
   mutable int solves_ = 0;
 };

@@ -105,7 +105,10 @@ void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& matrix, bool reu
   backends_ = std::make_unique<Backends>();
   if (matrix.rows() >= kSupernodalThreshold) {
     backends_->supernodal = make_supernodal_factor();
-    if (backends_->supernodal && backends_->supernodal->analyze(matrix, reused)) return;
+    if (backends_->supernodal && backends_->supernodal->analyze(matrix, reused)) {
+      ordering_.indices() = backends_->supernodal->ordering();
+      return;
+    }
     backends_->supernodal.reset();
   }
   backends_->simplicial = std::make_unique<Simplicial>();
@@ -114,13 +117,19 @@ void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& matrix, bool reu
 }
 
 void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& matrix, const Ordering& ordering) {
-  // Only the simplicial analysis takes an ordering; a large system may go to
-  // the supernodal factorisation.
-  if (matrix.rows() >= kSupernodalThreshold || ordering.size() != matrix.rows()) return analyze(matrix);
+  if (ordering.size() != matrix.rows()) return analyze(matrix);
   rows_ = matrix.rows();
   released_backend_ = nullptr;
   ordering_ = ordering;
   backends_ = std::make_unique<Backends>();
+  if (matrix.rows() >= kSupernodalThreshold) {
+    backends_->supernodal = make_supernodal_factor();
+    if (backends_->supernodal && backends_->supernodal->analyze(matrix, ordering.indices())) {
+      ordering_.indices() = backends_->supernodal->ordering();
+      return;
+    }
+    backends_->supernodal.reset();
+  }
   backends_->simplicial = std::make_unique<Simplicial>();
   backends_->simplicial->analyze_ordered(matrix, ordering_);
 }
@@ -131,7 +140,7 @@ void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& matrix) {
     if (backends_->supernodal->factorize(matrix)) return;
     backends_->supernodal.reset();  // not positive definite: LDLT from now on
     backends_->simplicial = std::make_unique<Simplicial>();
-    backends_->simplicial->analyze_amd(matrix);
+    backends_->simplicial->analyze_ordered(matrix, ordering_);
   }
   backends_->simplicial->factorize(matrix);
   if (backends_->simplicial->info() != Eigen::Success)
@@ -144,11 +153,7 @@ Eigen::MatrixX3d SparseCholesky::solve(const Eigen::MatrixX3d& rhs) const {
 }
 
 Eigen::MatrixX2d SparseCholesky::solve(const Eigen::MatrixX2d& rhs) const {
-  if (backends_->supernodal) {
-    Eigen::MatrixX2d x(rhs.rows(), 2);
-    for (int c = 0; c < 2; ++c) x.col(c) = backends_->supernodal->solve(Eigen::VectorXd(rhs.col(c)));
-    return x;
-  }
+  if (backends_->supernodal) return backends_->supernodal->solve(rhs);
   return backends_->simplicial->solve_columns<2>(rhs);
 }
 

@@ -20,12 +20,20 @@ class SupernodalFactor {
   virtual ~SupernodalFactor() = default;
   // `reused`: choose the ordering from AMD and METIS (more analysis, faster
   // factorisations); otherwise AMD alone. False when the analysis failed.
+  // `reused`: choose the ordering from AMD and METIS (more analysis, faster
+  // factorisations); otherwise AMD alone. False when the analysis failed.
   virtual bool analyze(const Eigen::SparseMatrix<double>& matrix, bool reused) = 0;
+  // The analysis with a known fill-reducing ordering (`ordering[k]`: the
+  // unknown eliminated k-th), skipping the costliest part of it.
+  virtual bool analyze(const Eigen::SparseMatrix<double>& matrix, const Eigen::VectorXi& ordering) = 0;
+  // The ordering the last analysis used, in the same convention (empty
+  // before one).
+  virtual Eigen::VectorXi ordering() const = 0;
   // False when the matrix is not positive definite (silently: CHOLMOD's own
   // warning would go to stdout, where the program writes its report).
   virtual bool factorize(const Eigen::SparseMatrix<double>& matrix) = 0;
-  virtual Eigen::MatrixX3d solve(const Eigen::MatrixX3d& rhs) const = 0;
-  virtual Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const = 0;
+  // Every column of `rhs` in one pass over the factor.
+  virtual Eigen::MatrixXd solve(const Eigen::MatrixXd& rhs) const = 0;
 };
 
 // A new factor from the plugin, or null when it cannot be loaded. The plugin

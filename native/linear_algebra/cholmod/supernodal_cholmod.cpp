@@ -30,6 +30,31 @@ class SerialOpenMP {
 #endif
 };
 
+// Eigen's wrapper, whose analysis can also start from a known ordering
+// (CHOLMOD_GIVEN) and tell the one it used.
+class Llt : public Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> {
+ public:
+  void analyze_given(const Eigen::SparseMatrix<double>& matrix, const Eigen::VectorXi& ordering) {
+    if (m_cholmodFactor) {
+      cholmod_free_factor(&m_cholmodFactor, &cholmod());
+      m_cholmodFactor = nullptr;
+    }
+    cholmod_sparse a = Eigen::viewAsCholmod(matrix.selfadjointView<Eigen::Lower>());
+    cholmod().nmethods = 1;
+    cholmod().method[0].ordering = CHOLMOD_GIVEN;
+    m_cholmodFactor = cholmod_analyze_p(&a, const_cast<int*>(ordering.data()), nullptr, 0, &cholmod());
+    m_isInitialized = true;
+    m_info = m_cholmodFactor ? Eigen::Success : Eigen::InvalidInput;
+    m_analysisIsOk = m_cholmodFactor != nullptr;
+    m_factorizationIsOk = false;
+  }
+  Eigen::VectorXi ordering() const {
+    if (!m_cholmodFactor || !m_cholmodFactor->Perm) return {};
+    return Eigen::Map<const Eigen::VectorXi>(static_cast<const int*>(m_cholmodFactor->Perm),
+                                             static_cast<Eigen::Index>(m_cholmodFactor->n));
+  }
+};
+
 class SupernodalCholmod final : public SupernodalFactor {
  public:
   SupernodalCholmod() { llt_.cholmod().print = 0; }
@@ -44,23 +69,27 @@ class SupernodalCholmod final : public SupernodalFactor {
     return llt_.info() == Eigen::Success;
   }
 
+  bool analyze(const Eigen::SparseMatrix<double>& matrix, const Eigen::VectorXi& ordering) override {
+    const SerialOpenMP serial;
+    llt_.analyze_given(matrix, ordering);
+    return llt_.info() == Eigen::Success;
+  }
+
+  Eigen::VectorXi ordering() const override { return llt_.ordering(); }
+
   bool factorize(const Eigen::SparseMatrix<double>& matrix) override {
     const SerialOpenMP serial;
     llt_.factorize(matrix);
     return llt_.info() == Eigen::Success;
   }
 
-  Eigen::MatrixX3d solve(const Eigen::MatrixX3d& rhs) const override {
-    const SerialOpenMP serial;
-    return llt_.solve(rhs);
-  }
-  Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const override {
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& rhs) const override {
     const SerialOpenMP serial;
     return llt_.solve(rhs);
   }
 
  private:
-  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> llt_;
+  Llt llt_;
 };
 
 }  // namespace
