@@ -96,36 +96,43 @@ TEST(SparseCholesky, SmallAndLargeSystemsSolveAccurately) {
 }
 
 // A kept ordering gives the same factor bit for bit, and survives release();
-// one of another size is ignored (the analysis computes its own).
+// one of another size is ignored (the analysis computes its own). For
+// CHOLMOD's systems too: its ordering is handed back to it (CHOLMOD_GIVEN).
 TEST(SparseCholesky, AKeptOrderingGivesTheSameSolutionBitForBit) {
-  const SparseMatrix a = shifted_laplacian(test_meshes::uv_sphere(48, 24));
-  const Eigen::MatrixX3d b = Eigen::MatrixX3d::Random(a.rows(), 3);
-  SparseCholesky first;
-  first.analyze(a);
-  first.factorize(a);
-  const Eigen::MatrixX3d expected = first.solve(b);
-  ASSERT_EQ(first.ordering().size(), a.rows());
-  first.release();
-  EXPECT_TRUE(first.released());
-  ASSERT_EQ(first.ordering().size(), a.rows());
-  SparseCholesky second;
-  second.analyze(a, first.ordering());
-  second.factorize(a);
-  EXPECT_FALSE(second.released());
-  EXPECT_EQ(second.solve(b), expected);
-  EXPECT_EQ(second.ordering().indices(), first.ordering().indices());
-  // A natural ordering (another fill) still solves, not bit for bit.
-  SparseCholesky::Ordering identity(a.rows());
-  identity.setIdentity();
-  SparseCholesky natural;
-  natural.analyze(a, identity);
-  natural.factorize(a);
-  EXPECT_LT(relative_residual(a, natural.solve(b), b), 1e-8);
-  SparseCholesky::Ordering wrong_size(3);
-  wrong_size.setIdentity();
-  natural.analyze(a, wrong_size);
-  natural.factorize(a);
-  EXPECT_EQ(natural.solve(b), expected);
+  for (const PolygonMesh& mesh : {test_meshes::uv_sphere(48, 24), test_meshes::uv_sphere(400, 150)}) {
+    const SparseMatrix a = shifted_laplacian(mesh);
+    const Eigen::MatrixX3d b = Eigen::MatrixX3d::Random(a.rows(), 3);
+    SparseCholesky first;
+    first.analyze(a);
+    first.factorize(a);
+    const Eigen::MatrixX3d expected = first.solve(b);
+    ASSERT_EQ(first.ordering().size(), a.rows()) << first.backend();
+    first.release();
+    EXPECT_TRUE(first.released());
+    ASSERT_EQ(first.ordering().size(), a.rows());
+    SparseCholesky second;
+    second.analyze(a, first.ordering());
+    second.factorize(a);
+    EXPECT_STREQ(second.backend(), first.backend());
+    EXPECT_FALSE(second.released());
+    EXPECT_EQ(second.solve(b), expected) << second.backend();
+    EXPECT_EQ(second.ordering().indices(), first.ordering().indices());
+    // A natural ordering (another fill) still solves, not bit for bit.
+    SparseCholesky::Ordering identity(a.rows());
+    identity.setIdentity();
+    SparseCholesky natural;
+    natural.analyze(a, identity);
+    natural.factorize(a);
+    EXPECT_LT(relative_residual(a, natural.solve(b), b), 1e-8);
+    SparseCholesky::Ordering wrong_size(3);
+    wrong_size.setIdentity();
+    natural.analyze(a, wrong_size);
+    natural.factorize(a);
+    EXPECT_EQ(natural.solve(b), expected);
+    // Two columns in one pass, as each alone.
+    const Eigen::MatrixX2d two = second.solve(Eigen::MatrixX2d(b.leftCols(2)));
+    EXPECT_LT((two - expected.leftCols(2)).norm(), 1e-12 * expected.norm());
+  }
 }
 
 // The analysis orders the full symmetric pattern directly: the same ordering
