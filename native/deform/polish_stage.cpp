@@ -11,6 +11,7 @@
 #include "deform/chart_planes.h"
 #include "deform/robust_run.h"
 #include "labels/axis.h"
+#include "mesh/triangle_incidence.h"
 
 namespace polycube {
 namespace {
@@ -21,6 +22,27 @@ namespace {
 // area moves).
 struct AreaBounds {
   double scale2 = 1.0, smallest = 0.0, largest = 0.0;
+};
+
+// What the step control walks, built once per polish: per axis, the
+// vertices of each unknown (whose share a halving changes: only they move),
+// and per vertex its triangles (only they change shape).
+struct BlendIndex {
+  std::array<std::vector<int>, 3> first, vertices;  // vertices[first[u] .. first[u + 1]) share unknown u
+  TriangleIncidence incidence;
+
+  BlendIndex(const Deformation& d, const ChartPlanes& planes) : incidence(d.n, d.triangles()) {
+    for (int axis = 0; axis < 3; ++axis) {
+      const std::vector<int>& unknown = planes.unknowns(axis);
+      const int count = unknown.empty() ? 0 : *std::max_element(unknown.begin(), unknown.end()) + 1;
+      first[axis].assign(count + 1, 0);
+      for (int u : unknown) ++first[axis][u + 1];
+      for (int u = 0; u < count; ++u) first[axis][u + 1] += first[axis][u];
+      vertices[axis].resize(unknown.size());
+      std::vector<int> next(first[axis].begin(), first[axis].end() - 1);
+      for (int v = 0; v < static_cast<int>(unknown.size()); ++v) vertices[axis][next[unknown[v]]++] = v;
+    }
+  }
 };
 
 // From the run's positions (whose triangle areas are `areas_now`) towards
@@ -34,75 +56,118 @@ struct AreaBounds {
 // figures' own, and a triangle the run left collapsed that opens turned over
 // can block with its corners still: after that many rounds the step is
 // dropped.
-Vertices controlled_blend(const Deformation& d, const ChartPlanes& planes, const Vertices& target,
-                          const std::vector<char>& collapsed_before, const AreaBounds& bounds,
+// After the first round only what a halving moves is measured again: the
+// vertices of the unknowns halved, their triangles, and the triangles whose
+// area points against their axis (the only ones the scale, which every
+// move changes, can turn over); the rest of the mesh stands where the last
+// round put it, with the same flags (the same result bit for bit as a
+// measure of the whole mesh every round).
+Vertices controlled_blend(const Deformation& d, const ChartPlanes& planes, const BlendIndex& index,
+                          const Vertices& target, const std::vector<char>& collapsed_before, const AreaBounds& bounds,
                           const std::vector<char>& held, const std::vector<double>& areas_now) {
   const Triangles& triangles = d.triangles();
+  const Eigen::Index count = triangles.rows();
   const Vertices step = target - d.x;
   std::array<std::vector<double>, 3> share;
   std::array<std::vector<int>, 3> halvings;
   std::array<std::vector<char>, 3> marked;
   for (int axis = 0; axis < 3; ++axis) {
-    const std::vector<int>& unknown = planes.unknowns(axis);
-    const int count = unknown.empty() ? 0 : *std::max_element(unknown.begin(), unknown.end()) + 1;
-    share[axis].assign(count, 1.0);
-    halvings[axis].assign(count, 0);
-    marked[axis].assign(count, 0);
+    const int unknowns = static_cast<int>(index.first[axis].size()) - 1;
+    share[axis].assign(unknowns, 1.0);
+    halvings[axis].assign(unknowns, 0);
+    marked[axis].assign(unknowns, 0);
     for (int v = 0; v < d.n; ++v)
-      if (held[v]) share[axis][unknown[v]] = 0.0;
+      if (held[v]) share[axis][planes.unknowns(axis)[v]] = 0.0;
   }
-  std::vector<char> collapsed, flipped;
-  // After the first round only the triangles around the corners whose
-  // share was halved are measured again (most of the mesh stands where the
-  // last round put it).
-  TriangleAreas measured;
-  const std::vector<double>& areas = measured.area;
-  std::vector<char> vertex_moved(d.n, 0);
-  std::vector<int> moved;
-  Vertices next = d.x;
-  const std::vector<double>& input_areas = d.quality.input_areas();
-  const int max_rounds = 4 * (kMaxHalvings + 1);
-  for (int round = 0; round < max_rounds; ++round) {
-    for (int v = 0; v < d.n; ++v) {
-      bool changed = false;
-      for (int axis = 0; axis < 3; ++axis) {
-        const double value = d.x(v, axis) + share[axis][planes.unknowns(axis)[v]] * step(v, axis);
-        changed = changed || value != next(v, axis);
-        next(v, axis) = value;
-      }
-      vertex_moved[v] = changed;
-    }
-    if (round == 0) {
-      d.quality.fold_flags(next, measured, collapsed, flipped);
-    } else {
-      moved.clear();
-      for (Eigen::Index t = 0; t < triangles.rows(); ++t)
-        if (vertex_moved[triangles(t, 0)] || vertex_moved[triangles(t, 1)] || vertex_moved[triangles(t, 2)])
-          moved.push_back(static_cast<int>(t));
-      d.quality.fold_flags_moved(next, moved, measured, collapsed, flipped);
-    }
-    bool blocked = false;
-    for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
-      // Turned over, or its area further out of bounds than it is now (a
-      // triangle at a bound stays there however rounding moves it).
-      const double ratio = areas[t] / (bounds.scale2 * input_areas[t]);
-      const bool out =
-          input_areas[t] > 0.0 && ((ratio > bounds.largest && areas[t] > areas_now[t]) ||
-                                   (!collapsed_before[t] && ratio < bounds.smallest && areas[t] < areas_now[t]));
-      if (!flipped[t] && !out) continue;
-      blocked = true;
-      for (int k = 0; k < 3; ++k)
-        for (int axis = 0; axis < 3; ++axis) marked[axis][planes.unknowns(axis)[triangles(t, k)]] = 1;
-    }
-    if (!blocked) return next;
+  Vertices next(d.n, 3);
+  for (int v = 0; v < d.n; ++v)
     for (int axis = 0; axis < 3; ++axis)
-      for (size_t u = 0; u < share[axis].size(); ++u) {
-        if (!marked[axis][u]) continue;
-        marked[axis][u] = 0;
-        share[axis][u] = ++halvings[axis][u] > kMaxHalvings ? 0.0 : 0.5 * share[axis][u];
-      }
+      next(v, axis) = d.x(v, axis) + share[axis][planes.unknowns(axis)[v]] * step(v, axis);
+  TriangleAreas measured;
+  std::vector<char> unused_collapsed, flipped;
+  double scale2 = d.quality.fold_flags(next, measured, unused_collapsed, flipped);
+  const std::vector<double>& areas = measured.area;
+  const std::vector<double>& input_areas = d.quality.input_areas();
+  // Turned over, or its area further out of bounds than it is now (a
+  // triangle at a bound stays there however rounding moves it).
+  auto blocks = [&](Eigen::Index t) {
+    const double ratio = areas[t] / (bounds.scale2 * input_areas[t]);
+    const bool out =
+        input_areas[t] > 0.0 && ((ratio > bounds.largest && areas[t] > areas_now[t]) ||
+                                 (!collapsed_before[t] && ratio < bounds.smallest && areas[t] < areas_now[t]));
+    return flipped[t] || out;
+  };
+  // The triangles blocking, and those pointing against their axis; a
+  // triangle measured again this round is flagged in `seen`.
+  std::vector<int> blocking, against, moved, moved_vertices, list;
+  std::vector<char> seen(count, 0), vertex_moved(d.n, 0);
+  for (Eigen::Index t = 0; t < count; ++t) {
+    if (measured.along[t] < 0.0) against.push_back(static_cast<int>(t));
+    if (blocks(t)) blocking.push_back(static_cast<int>(t));
   }
-  return d.x;
+  const int max_rounds = 4 * (kMaxHalvings + 1);
+  std::array<std::vector<int>, 3> halved;
+  for (int round = 1;; ++round) {
+    if (blocking.empty()) return next;
+    if (round == max_rounds) return d.x;
+    for (int t : blocking)
+      for (int k = 0; k < 3; ++k)
+        for (int axis = 0; axis < 3; ++axis) {
+          const int u = planes.unknowns(axis)[triangles(t, k)];
+          if (!marked[axis][u]) halved[axis].push_back(u);
+          marked[axis][u] = 1;
+        }
+    moved_vertices.clear();
+    for (int axis = 0; axis < 3; ++axis) {
+      for (int u : halved[axis]) {
+        marked[axis][u] = 0;
+        const double before = share[axis][u];
+        share[axis][u] = ++halvings[axis][u] > kMaxHalvings ? 0.0 : 0.5 * share[axis][u];
+        if (share[axis][u] == before) continue;
+        for (int i = index.first[axis][u]; i < index.first[axis][u + 1]; ++i) {
+          const int v = index.vertices[axis][i];
+          const double value = d.x(v, axis) + share[axis][u] * step(v, axis);
+          if (value == next(v, axis)) continue;
+          next(v, axis) = value;
+          if (!vertex_moved[v]) moved_vertices.push_back(v);
+          vertex_moved[v] = 1;
+        }
+      }
+      halved[axis].clear();
+    }
+    moved.clear();
+    for (int v : moved_vertices) {
+      vertex_moved[v] = 0;
+      for (int i = index.incidence.offsets[v]; i < index.incidence.offsets[v + 1]; ++i) {
+        const int t = index.incidence.triangles[i];
+        if (!seen[t]) moved.push_back(t);
+        seen[t] = 1;
+      }
+    }
+    scale2 = d.quality.rescale_moved(next, moved, measured);
+    // Pointing against their axis now: those that did and stood still, and
+    // the moved ones that do (the moved are flagged in `seen`).
+    std::vector<int> still;
+    for (int t : against)
+      if (!seen[t] && measured.along[t] < 0.0) still.push_back(t);
+    for (int t : moved)
+      if (measured.along[t] < 0.0) still.push_back(t);
+    // The flags that can have changed (the moved triangles', and at the new
+    // scale those pointing against their axis) and those that blocked.
+    list = moved;
+    for (const std::vector<int>* more : {&still, &blocking})
+      for (int t : *more) {
+        if (!seen[t]) list.push_back(t);
+        seen[t] = 1;
+      }
+    blocking.clear();
+    for (int t : list) {
+      seen[t] = 0;
+      flipped[t] = d.quality.turned_over(measured, t, scale2);
+      if (blocks(t)) blocking.push_back(t);
+    }
+    against = std::move(still);
+  }
 }
 
 // The figures' two errors (docs/design.md section 4) as a smooth energy:
@@ -360,6 +425,7 @@ int polish_stage(RobustRun& run, std::unique_ptr<ChartPlanes> factored) {
     factored.reset();  // its other factors: not in memory beside new ones
   }
   planes.factorize(d.laplacian.matrix());
+  const BlendIndex index(d, planes);
   const Figures start = d.quality.measure(d.x, run.state);
   const AreaBounds bounds = area_bounds(d, run.state);
   const LeftOut left_out = left_out_of(run);
@@ -399,7 +465,8 @@ int polish_stage(RobustRun& run, std::unique_ptr<ChartPlanes> factored) {
     if (steps > 0) d.quality.fold_flags(d.x, unused_collapsed, unused_flipped, &areas_now);
     bool moved = false;
     for (int halving = 0; halving <= 2 * kMaxHalvings; ++halving) {
-      Vertices next = controlled_blend(d, planes, d.x + step_length * direction, collapsed, bounds, held, areas_now);
+      Vertices next =
+          controlled_blend(d, planes, index, d.x + step_length * direction, collapsed, bounds, held, areas_now);
       const Errors next_errors = smooth_errors(d, left_out, log_lengths, next, &slopes);
       if (!next_errors.better_than(errors)) {
         step_length *= 0.5;

@@ -137,8 +137,8 @@ double QualityMeasure::fold_flags(const Vertices& output, TriangleAreas& areas, 
   return flags_from(areas, total, collapsed, flipped);
 }
 
-double QualityMeasure::fold_flags_moved(const Vertices& output, const std::vector<int>& moved, TriangleAreas& areas,
-                                        std::vector<char>& collapsed, std::vector<char>& flipped) const {
+double QualityMeasure::rescale_moved(const Vertices& output, const std::vector<int>& moved,
+                                     TriangleAreas& areas) const {
   for (int f : moved) {
     const Eigen::Vector3d normal = doubled_normal(output, triangles_, f);
     areas.area[f] = 0.5 * normal.norm();
@@ -150,7 +150,7 @@ double QualityMeasure::fold_flags_moved(const Vertices& output, const std::vecto
   double total = 0.0;
 #pragma omp parallel for num_threads(parallel_threads(count)) reduction(+ : total)
   for (Eigen::Index f = 0; f < count; ++f) total += area[f];
-  return flags_from(areas, total, collapsed, flipped);
+  return input_total_ > 0.0 && total > 0.0 ? total / input_total_ : 1.0;
 }
 
 double QualityMeasure::flags_from(const TriangleAreas& areas, double total, std::vector<char>& collapsed,

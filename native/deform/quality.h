@@ -93,15 +93,21 @@ class QualityMeasure {
                     std::vector<double>* areas = nullptr) const;
   // The same, keeping in `areas` what the flags follow from, so that a
   // later trial that moves a few corners measures only the triangles
-  // around them (fold_flags_moved): the polish's step control halves the
+  // around them (rescale_moved): the polish's step control halves the
   // steps of a few unknowns per round (polish_stage.h).
   double fold_flags(const Vertices& output, TriangleAreas& areas, std::vector<char>& collapsed,
                     std::vector<char>& flipped) const;
-  // fold_flags() of `output`, whose triangles other than `moved` have the
-  // corners `areas` was measured at: the same flags, scale and areas bit
-  // for bit, at the cost of `moved` and one sum.
-  double fold_flags_moved(const Vertices& output, const std::vector<int>& moved, TriangleAreas& areas,
-                          std::vector<char>& collapsed, std::vector<char>& flipped) const;
+  // The scale s^2 of `output`, whose triangles other than `moved` have the
+  // corners `areas` was measured at, with the areas of `moved` brought up
+  // to date: the same scale and areas as fold_flags() bit for bit, at the
+  // cost of `moved` and one sum. Only a triangle of `moved` or one whose
+  // area points against its axis (TriangleAreas::along) can have changed
+  // flags (turned_over()).
+  double rescale_moved(const Vertices& output, const std::vector<int>& moved, TriangleAreas& areas) const;
+  // fold_flags()' flipped flag of triangle f from `areas` at scale `scale2`.
+  bool turned_over(const TriangleAreas& areas, Eigen::Index f, double scale2) const {
+    return areas.along[f] < 0.0 && !is_collapsed(areas.area[f], input_area_[f], scale2);
+  }
   // Without `errors`, the edge and area error means and the largest area
   // ratio are left at 0: the stopping rule needs only the normal figures,
   // and the edge pass is the costliest part.

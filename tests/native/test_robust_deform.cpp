@@ -402,8 +402,9 @@ TEST(Robust, FoldsBeyondAgreesWithFaceStates) {
 }
 
 // The polish's step control measures again only the triangles around the
-// corners a trial moved (fold_flags_moved): the same flags, scale and areas,
-// bit for bit, as measuring the whole mesh.
+// corners a trial moved (rescale_moved), and flags only those and the ones
+// pointing against their axis (turned_over): the same flags, scale and
+// areas, bit for bit, as measuring the whole mesh.
 TEST(Robust, FoldFlagsOfMovedTrianglesAgreeWithTheWholeMesh) {
   const PolygonMesh mesh = test_meshes::uv_sphere(24, 12);
   const Triangulation triangulation = triangulate(mesh.vertices, mesh.faces);
@@ -427,20 +428,24 @@ TEST(Robust, FoldFlagsOfMovedTrianglesAgreeWithTheWholeMesh) {
         around.push_back(static_cast<int>(t));
         break;
       }
-  std::vector<char> all_collapsed, all_flipped, some_collapsed, some_flipped;
+  std::vector<char> all_collapsed, all_flipped;
   std::vector<double> areas;
   const double scale2 = measure.fold_flags(moved, all_collapsed, all_flipped, &areas);
-  EXPECT_EQ(measure.fold_flags_moved(moved, around, kept, some_collapsed, some_flipped), scale2);
-  EXPECT_EQ(some_collapsed, all_collapsed);
-  EXPECT_EQ(some_flipped, all_flipped);
+  EXPECT_EQ(measure.rescale_moved(moved, around, kept), scale2);
   EXPECT_EQ(kept.area, areas);
+  // Every triangle's flag from the kept areas; only those moved or pointing
+  // against their axis can be turned over.
+  for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
+    EXPECT_EQ(measure.turned_over(kept, t, scale2), static_cast<bool>(all_flipped[t])) << t;
+    if (all_flipped[t]) EXPECT_LT(kept.along[t], 0.0);
+  }
   for (char f : all_flipped) flips += f;
   EXPECT_GT(flips, 0);  // the test sees triangles turned over
   // Missing a moved triangle is seen: the areas then differ.
   TriangleAreas stale;
   measure.fold_flags(mesh.vertices, stale, collapsed, flipped);
   around.pop_back();
-  measure.fold_flags_moved(moved, around, stale, some_collapsed, some_flipped);
+  measure.rescale_moved(moved, around, stale);
   EXPECT_NE(stale.area, areas);
 }
 
