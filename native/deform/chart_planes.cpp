@@ -27,7 +27,6 @@ void ChartPlanes::join(int axis, int a, int b) {
 
 void ChartPlanes::use_chart_factors(const ChartPlanes& same_charts) {
   chart_orderings_ = same_charts.chart_orderings_;
-  chart_unknown_ = same_charts.chart_unknown_;
   for (int axis = 0; axis < 3; ++axis) {
     if (!same_charts.charts_only_[axis] || same_charts.changed_[axis] || !same_charts.cholesky_[axis]) continue;
     cholesky_[axis] = same_charts.cholesky_[axis];
@@ -39,10 +38,7 @@ void ChartPlanes::use_chart_factors(const ChartPlanes& same_charts) {
 void ChartPlanes::share_factors(const ChartPlanes& other) {
   std::vector<int> of_root, unknown;
   for (int axis = 0; axis < 3; ++axis) {
-    if (chart_orderings_[axis].size() == 0) {
-      chart_orderings_[axis] = other.chart_orderings_[axis];
-      chart_unknown_[axis] = other.chart_unknown_[axis];
-    }
+    if (!chart_orderings_[axis]) chart_orderings_[axis] = other.chart_orderings_[axis];
     if (other.changed_[axis] || !other.cholesky_[axis]) continue;
     const int n = sets_[axis].size();
     if (n != static_cast<int>(other.unknown_[axis].size())) continue;
@@ -185,14 +181,13 @@ void ChartPlanes::factorize(const Eigen::SparseMatrix<double>& laplacian) {
     // it always was: another ordering rounds its factor otherwise, and the
     // runs' decisions follow figures near their bounds (the anchor's last
     // resort ended with 15% of its area collapsed instead of 0.03%).
+    const ChartOrdering* charts = chart_orderings_[axis].get();
     const bool joined =
-        charts_only_[axis] ? chart_unknown_[axis] == unknown : m >= SparseCholesky::kSupernodalThreshold;
-    cholesky->analyze(reduced, joined ? joined_ordering(chart_orderings_[axis], chart_unknown_[axis], unknown, m)
-                                      : SparseCholesky::Ordering());
-    if (charts_only_[axis]) {
-      chart_orderings_[axis] = cholesky->ordering();
-      chart_unknown_[axis] = unknown;
-    }
+        charts && (charts_only_[axis] ? charts->unknown == unknown : m >= SparseCholesky::kSupernodalThreshold);
+    cholesky->analyze(
+        reduced, joined ? joined_ordering(charts->ordering, charts->unknown, unknown, m) : SparseCholesky::Ordering());
+    if (charts_only_[axis] && !joined)
+      chart_orderings_[axis] = std::make_shared<const ChartOrdering>(ChartOrdering{cholesky->ordering(), unknown});
     cholesky->factorize(reduced);
     cholesky_[axis] = std::move(cholesky);
   }

@@ -106,8 +106,13 @@ class ChartPlanes {
   // unknown in it: the systems with collapses, whose unknowns join the
   // charts', are ordered from it.
   std::array<bool, 3> charts_only_ = {true, true, true};
-  std::array<SparseCholesky::Ordering, 3> chart_orderings_;
-  std::array<std::vector<int>, 3> chart_unknown_;
+  struct ChartOrdering {
+    SparseCholesky::Ordering ordering;
+    std::vector<int> unknown;
+  };
+  // Shared by the planes that take them (a vertex's worth of memory each at
+  // scale, several planes alive at once).
+  std::array<std::shared_ptr<const ChartOrdering>, 3> chart_orderings_;
   int factorizations_ = 0;
   mutable int solves_ = 0;
 };
