@@ -40,9 +40,9 @@ class ChartPlanes {
   // Reduces L (positive definite, e.g. with the diagonal shift of
   // deformation.h) to the flat-chart positions and factorises it, once per axis.
   // Called again after collapse() with the same L, it redoes only the axes
-  // whose charts changed, each ordered from the charts' own system (whose
-  // unknowns its own join) rather than analysed afresh. Throws Error when a
-  // factorisation fails.
+  // whose charts changed; at scale each ordered from the charts' own system
+  // (whose unknowns its own join) rather than analysed afresh. Throws Error
+  // when a factorisation fails.
   void factorize(const Eigen::SparseMatrix<double>& laplacian);
   int factorizations() const { return factorizations_; }
   // Calls of solve() (three back-substitutions each, one per axis).

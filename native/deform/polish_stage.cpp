@@ -85,7 +85,7 @@ Vertices controlled_blend(const Deformation& d, const ChartPlanes& planes, const
       next(v, axis) = d.x(v, axis) + share[axis][planes.unknowns(axis)[v]] * step(v, axis);
   TriangleAreas measured;
   std::vector<char> unused_collapsed, flipped;
-  double scale2 = d.quality.fold_flags(next, measured, unused_collapsed, flipped);
+  d.quality.fold_flags(next, measured, unused_collapsed, flipped);
   const std::vector<double>& areas = measured.area;
   const std::vector<double>& input_areas = d.quality.input_areas();
   // Turned over, or its area further out of bounds than it is now (a
@@ -99,7 +99,7 @@ Vertices controlled_blend(const Deformation& d, const ChartPlanes& planes, const
   };
   // The triangles blocking, and those pointing against their axis; a
   // triangle measured again this round is flagged in `seen`.
-  std::vector<int> blocking, against, moved, moved_vertices, list;
+  std::vector<int> blocking, against, still, moved, moved_vertices, list;
   std::vector<char> seen(count, 0), vertex_moved(d.n, 0);
   for (Eigen::Index t = 0; t < count; ++t) {
     if (measured.along[t] < 0.0) against.push_back(static_cast<int>(t));
@@ -144,12 +144,12 @@ Vertices controlled_blend(const Deformation& d, const ChartPlanes& planes, const
         seen[t] = 1;
       }
     }
-    scale2 = d.quality.rescale_moved(next, moved, measured);
+    const double scale2 = d.quality.rescale_moved(next, moved, measured);
     // Pointing against their axis now: those that did and stood still, and
     // the moved ones that do (the moved are flagged in `seen`).
-    std::vector<int> still;
+    still.clear();
     for (int t : against)
-      if (!seen[t] && measured.along[t] < 0.0) still.push_back(t);
+      if (!seen[t]) still.push_back(t);
     for (int t : moved)
       if (measured.along[t] < 0.0) still.push_back(t);
     // The flags that can have changed (the moved triangles', and at the new
@@ -166,7 +166,7 @@ Vertices controlled_blend(const Deformation& d, const ChartPlanes& planes, const
       flipped[t] = d.quality.turned_over(measured, t, scale2);
       if (blocks(t)) blocking.push_back(t);
     }
-    against = std::move(still);
+    against.swap(still);
   }
 }
 

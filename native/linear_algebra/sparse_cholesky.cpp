@@ -99,39 +99,35 @@ SparseCholesky::SparseCholesky() : backends_(std::make_unique<Backends>()) {}
 SparseCholesky::~SparseCholesky() = default;
 
 void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& matrix, bool reused) {
-  rows_ = matrix.rows();
-  released_backend_ = nullptr;
-  ordering_.resize(0);
-  backends_ = std::make_unique<Backends>();
-  if (matrix.rows() >= kSupernodalThreshold) {
-    backends_->supernodal = make_supernodal_factor();
-    if (backends_->supernodal && backends_->supernodal->analyze(matrix, reused)) {
-      ordering_.indices() = backends_->supernodal->ordering();
-      return;
-    }
-    backends_->supernodal.reset();
-  }
-  backends_->simplicial = std::make_unique<Simplicial>();
-  backends_->simplicial->analyze_amd(matrix);
-  ordering_ = backends_->simplicial->permutationPinv();
+  analyze_with(matrix, Ordering(), reused);
 }
 
 void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& matrix, const Ordering& ordering) {
-  if (ordering.size() != matrix.rows()) return analyze(matrix);
+  analyze_with(matrix, ordering.size() == matrix.rows() ? ordering : Ordering(), false);
+}
+
+void SparseCholesky::analyze_with(const Eigen::SparseMatrix<double>& matrix, const Ordering& ordering, bool reused) {
   rows_ = matrix.rows();
   released_backend_ = nullptr;
   ordering_ = ordering;
   backends_ = std::make_unique<Backends>();
+  const bool given = ordering.size() > 0;
   if (matrix.rows() >= kSupernodalThreshold) {
-    backends_->supernodal = make_supernodal_factor();
-    if (backends_->supernodal && backends_->supernodal->analyze(matrix, ordering.indices())) {
-      ordering_.indices() = backends_->supernodal->ordering();
+    std::unique_ptr<SupernodalFactor>& supernodal = backends_->supernodal;
+    supernodal = make_supernodal_factor();
+    if (supernodal && (given ? supernodal->analyze(matrix, ordering.indices()) : supernodal->analyze(matrix, reused))) {
+      ordering_.indices() = supernodal->ordering();
       return;
     }
-    backends_->supernodal.reset();
+    supernodal.reset();
   }
   backends_->simplicial = std::make_unique<Simplicial>();
-  backends_->simplicial->analyze_ordered(matrix, ordering_);
+  if (given) {
+    backends_->simplicial->analyze_ordered(matrix, ordering_);
+  } else {
+    backends_->simplicial->analyze_amd(matrix);
+    ordering_ = backends_->simplicial->permutationPinv();
+  }
 }
 
 void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& matrix) {

@@ -61,6 +61,8 @@ class SparseCholesky {
   int factorizations() const { return factorizations_; }
 
  private:
+  // Either analysis: with `ordering` when it is not empty.
+  void analyze_with(const Eigen::SparseMatrix<double>& matrix, const Ordering& ordering, bool reused);
   struct Backends;
   std::unique_ptr<Backends> backends_;
   int factorizations_ = 0;

@@ -20,8 +20,6 @@ class SupernodalFactor {
   virtual ~SupernodalFactor() = default;
   // `reused`: choose the ordering from AMD and METIS (more analysis, faster
   // factorisations); otherwise AMD alone. False when the analysis failed.
-  // `reused`: choose the ordering from AMD and METIS (more analysis, faster
-  // factorisations); otherwise AMD alone. False when the analysis failed.
   virtual bool analyze(const Eigen::SparseMatrix<double>& matrix, bool reused) = 0;
   // The analysis with a known fill-reducing ordering (`ordering[k]`: the
   // unknown eliminated k-th), skipping the costliest part of it.
