@@ -5,9 +5,10 @@
 // weight ((1 - theta) |J|^2 + theta (d^2 + 1)) / chi(d).
 //
 // Why its own file: the untangler's Newton steps need the Hessian, made
-// positive semi-definite here, in J (a 4 x 4 eigen-decomposition per
-// triangle), before the triangle's linear map carries it to its corners,
-// which keeps it so; tests check both derivatives against finite differences.
+// positive semi-definite here, in J (from its eigensystem in closed form),
+// before the triangle's linear map carries it to its corners, which keeps it
+// so; tests check both derivatives against finite differences and the
+// projection against an iterative eigen-decomposition.
 #pragma once
 
 #include <Eigen/Core>

@@ -128,6 +128,43 @@ TEST(BarrierEnergy, ProjectedHessianIsPositiveSemiDefiniteAndExactWhereConvex) {
   EXPECT_GT(projected, 0);
 }
 
+// The closed-form projection (the energy's eigensystem through J's singular
+// value decomposition) against an iterative eigen-decomposition of the exact
+// Hessian, its negative eigenvalues turned to their absolute values: the
+// same matrix to rounding, on Jacobians turned over, collapsed, mirrored,
+// rotated and of every size, at the untangling's range of eps (where the
+// energy is defined: far turned over at a tiny eps, chi underflows).
+TEST(BarrierEnergy, ClosedFormProjectionMatchesTheEigenDecomposition) {
+  std::vector<Eigen::Matrix2d> all = jacobians();
+  Eigen::Matrix2d j;
+  j << 0.0, 0.0, 0.0, 0.0;  // every singular value equal (0)
+  all.push_back(j);
+  j << 0.0, 1.0, 1.0, 0.0;  // a mirror: q = 0
+  all.push_back(j);
+  j << std::cos(0.3), -std::sin(0.3), std::sin(0.3), std::cos(0.3);  // a rotation: r = 0
+  all.push_back(-2.0 * j);
+  j << 1.0, 0.0, 0.0, -1e-9;  // all but collapsed, turned over
+  all.push_back(j);
+  for (int i = 0; i < 300; ++i) all.push_back(std::pow(10.0, (i % 5) - 2.0) * Eigen::Matrix2d::Random());
+  int projected = 0;
+  for (const double eps : {0.5, 0.05, 1e-4, 1e-9}) {
+    for (const Eigen::Matrix2d& m : all) {
+      const Eigen::Matrix4d exact = barrier_hessian(m, 0.8, eps, kTheta, false);
+      if (!exact.allFinite()) continue;  // chi(det J) below the doubles: no energy to project
+      const Eigen::Matrix4d closed = barrier_hessian(m, 0.8, eps, kTheta, true);
+      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eigen(exact);
+      const Eigen::Matrix4d iterative =
+          eigen.eigenvectors() * eigen.eigenvalues().cwiseAbs().asDiagonal() * eigen.eigenvectors().transpose();
+      if (eigen.eigenvalues().minCoeff() < 0.0) ++projected;
+      EXPECT_LT((closed - iterative).norm(), 1e-9 * iterative.norm())
+          << "J " << m.reshaped().transpose() << " eps " << eps << "\n"
+          << closed << "\n"
+          << iterative;
+    }
+  }
+  EXPECT_GT(projected, 400);
+}
+
 // Rosenbrock's valley as one element of two unknowns, its Hessian projected
 // as the untangling's are: Newton needs a tenth of L-BFGS's iterations.
 TEST(MinimizeNewton, FindsTheRosenbrockMinimumInFewIterations) {
@@ -161,37 +198,50 @@ TEST(MinimizeNewton, FindsTheRosenbrockMinimumInFewIterations) {
 // Held unknowns stay; a shared unknown (two corners of one element on the
 // same entry) sums its blocks: a chain of springs, each element a quadratic
 // (x_i - x_j - 1)^2 in two unknowns, solved exactly by one Newton step.
+// Springs x_a - x_b = rest on a chain, each vertex also tied to the held
+// one (its first) at its distance along the chain, so the system is well
+// conditioned at every size: the minimum (every spring at rest) in one
+// step, also past SparseCholesky's threshold (60,000 unknowns: CHOLMOD
+// where its plugin loads).
 TEST(MinimizeNewton, SolvesAQuadraticInOneStepAndHoldsTheRest) {
-  const int n = 50;
-  std::vector<int> elements;
-  for (int i = 0; i + 1 < n; ++i) elements.push_back(i + 1), elements.push_back(i);
-  elements.push_back(3), elements.push_back(3);  // an element on one unknown twice: zero energy
-  const ElementObjective springs = [&](const Eigen::VectorXd& x, Eigen::VectorXd* g, std::vector<double>* h) {
-    double f = 0.0;
-    if (g) g->setZero(x.size());
-    if (h) h->clear();
-    for (size_t e = 0; e < elements.size() / 2; ++e) {
-      const int i = elements[2 * e], j = elements[2 * e + 1];
-      const double r = i == j ? 0.0 : x[i] - x[j] - 1.0;
-      f += r * r;
-      if (g && i != j) (*g)[i] += 2.0 * r, (*g)[j] -= 2.0 * r;
-      if (h) {
-        const double s = i == j ? 0.0 : 2.0;
-        h->insert(h->end(), {s, -s, -s, s});
-      }
+  for (const int n : {50, 60'000}) {
+    // Per element: its two unknowns; rests alongside. Vertex i of the chain
+    // is unknown n - 1 - i: the held one is the vector's tail.
+    std::vector<int> elements;
+    std::vector<double> rests;
+    for (int i = 0; i + 1 < n; ++i) {
+      elements.insert(elements.end(), {n - 2 - i, n - 1 - i});
+      rests.push_back(1.0);
+      if (i > 0) elements.insert(elements.end(), {n - 1 - i, n - 1}), rests.push_back(i);
     }
-    return f;
-  };
-  // The held unknowns are the vector's tail: number the chain from its far end.
-  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
-  for (int& u : elements) u = n - 1 - u;
-  x[n - 1] = 5.0;  // the chain's first vertex, held
-  NewtonMinimizer newton;
-  const NewtonResult r = newton.minimize(springs, elements, 2, n - 1, x, 10, 1e-10, 0.0);
-  EXPECT_TRUE(r.converged);
-  EXPECT_LE(r.iterations, 3);
-  EXPECT_EQ(x[n - 1], 5.0);
-  for (int i = 0; i + 1 < n; ++i) EXPECT_NEAR(x[n - 2 - i], 5.0 + (i + 1), 1e-8);
+    elements.push_back(3), elements.push_back(3), rests.push_back(0.0);  // on one unknown twice: zero energy
+    const ElementObjective springs = [&](const Eigen::VectorXd& x, Eigen::VectorXd* g, std::vector<double>* h) {
+      double f = 0.0;
+      if (g) g->setZero(x.size());
+      if (h) h->clear();
+      for (size_t e = 0; e < rests.size(); ++e) {
+        const int a = elements[2 * e], b = elements[2 * e + 1];
+        const double r = a == b ? 0.0 : x[a] - x[b] - rests[e];
+        f += r * r;
+        if (g && a != b) (*g)[a] += 2.0 * r, (*g)[b] -= 2.0 * r;
+        if (h) {
+          const double s = a == b ? 0.0 : 2.0;
+          h->insert(h->end(), {s, -s, -s, s});
+        }
+      }
+      return f;
+    };
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+    x[n - 1] = 5.0;  // the chain's first vertex, held
+    NewtonMinimizer newton;
+    const NewtonResult r = newton.minimize(springs, elements, 2, n - 1, x, 10, 1e-9, 0.0);
+    EXPECT_TRUE(r.converged) << n;
+    EXPECT_LE(r.iterations, 2) << n;
+    EXPECT_EQ(x[n - 1], 5.0);
+    double error = 0.0;
+    for (int i = 1; i < n; ++i) error = std::max(error, std::abs(x[n - 1 - i] - (5.0 + i)));
+    EXPECT_LT(error, 1e-9) << n;
+  }
 }
 
 // A real untangling: fandisk's flat charts from its nearest-axis labels (the
