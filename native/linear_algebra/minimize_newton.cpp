@@ -24,11 +24,16 @@ constexpr int kShiftTries = 6;
 
 }  // namespace
 
-// The lower triangle's pattern over the free unknowns, and where each
-// element's (row >= column) entries land in its values.
+// The lower triangle's pattern over the free unknowns, numbered in the
+// order its factorisation eliminates them (`at`: each unknown's place), and
+// where each element's entries land in its values. Why that order: the
+// factorisation then takes the matrix as it is, where one in the unknowns'
+// own order is copied, permuted, every time (CHOLMOD's factorisations: 7%
+// of an untangling at scale; docs/design.md section 2.6, stage 7).
 struct NewtonMinimizer::System {
   std::vector<int> element_unknowns;
   int element_size = 0, free = 0;
+  std::vector<int> at;                 // per free unknown: its row and column in `matrix`
   Eigen::SparseMatrix<double> matrix;  // lower triangle
   std::vector<int> position;           // per element, K * K: index into matrix's values, or -1
   std::vector<int> diagonal;           // per free unknown: index of its diagonal entry
@@ -36,7 +41,21 @@ struct NewtonMinimizer::System {
   bool analyzed = false;
 
   System(const std::vector<int>& unknowns, int k, int free_count)
-      : element_unknowns(unknowns), element_size(k), free(free_count) {
+      : element_unknowns(unknowns), element_size(k), free(free_count), at(free_count) {
+    std::iota(at.begin(), at.end(), 0);
+    build();
+    // The elimination order of the pattern in the unknowns' order, then
+    // the pattern again in it.
+    SparseCholesky order;
+    order.analyze(matrix, true);
+    const Eigen::VectorXi& eliminated = order.ordering().indices();
+    for (int place = 0; place < free; ++place) at[eliminated[place]] = place;
+    build();
+  }
+
+  void build() {
+    const int k = element_size;
+    const std::vector<int>& unknowns = element_unknowns;
     const size_t elements = unknowns.size() / k;
     // Rows per column, counted then filled (a triplet list would hold
     // 36 entries per triangle at once).
@@ -46,7 +65,7 @@ struct NewtonMinimizer::System {
         const int* u = &unknowns[e * k];
         for (int q = 0; q < k; ++q)
           for (int p = 0; p < k; ++p)
-            if (u[p] < free && u[q] < free && u[p] >= u[q]) visit(e, p, q, u[p], u[q]);
+            if (u[p] < free && u[q] < free && at[u[p]] >= at[u[q]]) visit(e, p, q, at[u[p]], at[u[q]]);
       }
     };
     for (int i = 0; i < free; ++i) ++start[i + 1];  // the diagonal, always
@@ -77,7 +96,17 @@ struct NewtonMinimizer::System {
     for_each_pair(
         [&](size_t e, int p, int q, int row, int column) { position[e * k * k + q * k + p] = index_of(row, column); });
     diagonal.resize(free);
-    for (int i = 0; i < free; ++i) diagonal[i] = index_of(i, i);
+    for (int i = 0; i < free; ++i) diagonal[i] = index_of(at[i], at[i]);
+  }
+
+  // The system's solution for `rhs` (by unknown), by unknown.
+  Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const {
+    Eigen::VectorXd placed(free);
+    for (int i = 0; i < free; ++i) placed[at[i]] = rhs[i];
+    const Eigen::VectorXd solution = factor.solve(placed);
+    Eigen::VectorXd out(free);
+    for (int i = 0; i < free; ++i) out[i] = solution[at[i]];
+    return out;
   }
 
   bool same(const std::vector<int>& unknowns, int k, int free_count) const {
@@ -129,14 +158,14 @@ NewtonResult NewtonMinimizer::minimize(const ElementObjective& objective, const 
       for (const int d : s.diagonal) values[d] += shift - applied;
       applied = shift;
       try {
-        if (!s.analyzed) s.factor.analyze(s.matrix, true), s.analyzed = true;
+        if (!s.analyzed) s.factor.analyze_in_order(s.matrix), s.analyzed = true;
         s.factor.factorize(s.matrix);
         ++result.factorizations;
       } catch (const Error&) {
         s.analyzed = false;  // the factorisation may have changed backend: analyse again
         continue;
       }
-      step = s.factor.solve(minus_gradient);
+      step = s.solve(minus_gradient);
       slope = -minus_gradient.dot(step);
       found = step.allFinite() && slope < 0.0;
     }

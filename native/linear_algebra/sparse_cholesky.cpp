@@ -106,6 +106,21 @@ void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& matrix, const Or
   analyze_with(matrix, ordering.size() == matrix.rows() ? ordering : Ordering(), false);
 }
 
+void SparseCholesky::analyze_in_order(const Eigen::SparseMatrix<double>& matrix) {
+  rows_ = matrix.rows();
+  released_backend_ = nullptr;
+  ordering_.setIdentity(matrix.rows());
+  backends_ = std::make_unique<Backends>();
+  if (matrix.rows() >= kSupernodalThreshold) {
+    std::unique_ptr<SupernodalFactor>& supernodal = backends_->supernodal;
+    supernodal = make_supernodal_factor();
+    if (supernodal && supernodal->analyze_in_order(matrix)) return;
+    supernodal.reset();
+  }
+  backends_->simplicial = std::make_unique<Simplicial>();
+  backends_->simplicial->analyze_ordered(matrix, ordering_);
+}
+
 void SparseCholesky::analyze_with(const Eigen::SparseMatrix<double>& matrix, const Ordering& ordering, bool reused) {
   rows_ = matrix.rows();
   released_backend_ = nullptr;

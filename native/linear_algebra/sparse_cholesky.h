@@ -42,6 +42,11 @@ class SparseCholesky {
   // costliest part of an analysis (B0 refined 16 times: AMD was an eighth of
   // the run). One of the wrong size is ignored (analysed as above).
   void analyze(const Eigen::SparseMatrix<double>& matrix, const Ordering& ordering);
+  // The analysis of a matrix already in its elimination order (permuted by
+  // an earlier analysis's ordering(), and the same pattern): no ordering,
+  // and CHOLMOD's factorisations take the matrix as it is instead of a
+  // permuted copy each time (a matrix factorised many times).
+  void analyze_in_order(const Eigen::SparseMatrix<double>& matrix);
   // Throws Error when the matrix cannot be factorised.
   void factorize(const Eigen::SparseMatrix<double>& matrix);
   // Several right-hand sides are solved in one pass over the factor, each

@@ -24,6 +24,10 @@ class SupernodalFactor {
   // The analysis with a known fill-reducing ordering (`ordering[k]`: the
   // unknown eliminated k-th), skipping the costliest part of it.
   virtual bool analyze(const Eigen::SparseMatrix<double>& matrix, const Eigen::VectorXi& ordering) = 0;
+  // The analysis of a matrix already in its elimination order: CHOLMOD's
+  // natural ordering, not postordered, so factorize() takes the matrix as
+  // it is, without a permuted copy.
+  virtual bool analyze_in_order(const Eigen::SparseMatrix<double>& matrix) = 0;
   // The ordering the last analysis used, in the same convention (empty
   // before one).
   virtual Eigen::VectorXi ordering() const = 0;

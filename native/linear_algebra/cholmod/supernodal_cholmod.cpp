@@ -48,6 +48,25 @@ class Llt : public Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> {
     m_analysisIsOk = m_cholmodFactor != nullptr;
     m_factorizationIsOk = false;
   }
+  void analyze_in_order(const Eigen::SparseMatrix<double>& matrix) {
+    if (m_cholmodFactor) {
+      cholmod_free_factor(&m_cholmodFactor, &cholmod());
+      m_cholmodFactor = nullptr;
+    }
+    cholmod_sparse a = Eigen::viewAsCholmod(matrix.selfadjointView<Eigen::Lower>());
+    cholmod().nmethods = 1;
+    cholmod().method[0].ordering = CHOLMOD_NATURAL;
+    // A postorder would leave the factor's ordering no longer natural
+    // (cholmod_analyze_p2), and factorisations permuting again.
+    const int postorder = cholmod().postorder;
+    cholmod().postorder = 0;
+    m_cholmodFactor = cholmod_analyze(&a, &cholmod());
+    cholmod().postorder = postorder;
+    m_isInitialized = true;
+    m_info = m_cholmodFactor ? Eigen::Success : Eigen::InvalidInput;
+    m_analysisIsOk = m_cholmodFactor != nullptr;
+    m_factorizationIsOk = false;
+  }
   Eigen::VectorXi ordering() const {
     if (!m_cholmodFactor || !m_cholmodFactor->Perm) return {};
     return Eigen::Map<const Eigen::VectorXi>(static_cast<const int*>(m_cholmodFactor->Perm),
@@ -72,6 +91,12 @@ class SupernodalCholmod final : public SupernodalFactor {
   bool analyze(const Eigen::SparseMatrix<double>& matrix, const Eigen::VectorXi& ordering) override {
     const SerialOpenMP serial;
     llt_.analyze_given(matrix, ordering);
+    return llt_.info() == Eigen::Success;
+  }
+
+  bool analyze_in_order(const Eigen::SparseMatrix<double>& matrix) override {
+    const SerialOpenMP serial;
+    llt_.analyze_in_order(matrix);
     return llt_.info() == Eigen::Success;
   }
 
