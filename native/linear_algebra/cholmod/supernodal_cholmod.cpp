@@ -31,46 +31,42 @@ class SerialOpenMP {
 };
 
 // Eigen's wrapper, whose analysis can also start from a known ordering
-// (CHOLMOD_GIVEN) and tell the one it used.
+// (CHOLMOD_GIVEN), or take the matrix in its elimination order already
+// (CHOLMOD_NATURAL), and tell the ordering it used.
 class Llt : public Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> {
  public:
   void analyze_given(const Eigen::SparseMatrix<double>& matrix, const Eigen::VectorXi& ordering) {
-    if (m_cholmodFactor) {
-      cholmod_free_factor(&m_cholmodFactor, &cholmod());
-      m_cholmodFactor = nullptr;
-    }
-    cholmod_sparse a = Eigen::viewAsCholmod(matrix.selfadjointView<Eigen::Lower>());
-    cholmod().nmethods = 1;
-    cholmod().method[0].ordering = CHOLMOD_GIVEN;
-    m_cholmodFactor = cholmod_analyze_p(&a, const_cast<int*>(ordering.data()), nullptr, 0, &cholmod());
-    m_isInitialized = true;
-    m_info = m_cholmodFactor ? Eigen::Success : Eigen::InvalidInput;
-    m_analysisIsOk = m_cholmodFactor != nullptr;
-    m_factorizationIsOk = false;
+    analyze_with(matrix, CHOLMOD_GIVEN, const_cast<int*>(ordering.data()));
   }
   void analyze_in_order(const Eigen::SparseMatrix<double>& matrix) {
-    if (m_cholmodFactor) {
-      cholmod_free_factor(&m_cholmodFactor, &cholmod());
-      m_cholmodFactor = nullptr;
-    }
-    cholmod_sparse a = Eigen::viewAsCholmod(matrix.selfadjointView<Eigen::Lower>());
-    cholmod().nmethods = 1;
-    cholmod().method[0].ordering = CHOLMOD_NATURAL;
     // A postorder would leave the factor's ordering no longer natural
     // (cholmod_analyze_p2), and factorisations permuting again.
     const int postorder = cholmod().postorder;
     cholmod().postorder = 0;
-    m_cholmodFactor = cholmod_analyze(&a, &cholmod());
+    analyze_with(matrix, CHOLMOD_NATURAL, nullptr);
     cholmod().postorder = postorder;
-    m_isInitialized = true;
-    m_info = m_cholmodFactor ? Eigen::Success : Eigen::InvalidInput;
-    m_analysisIsOk = m_cholmodFactor != nullptr;
-    m_factorizationIsOk = false;
   }
   Eigen::VectorXi ordering() const {
     if (!m_cholmodFactor || !m_cholmodFactor->Perm) return {};
     return Eigen::Map<const Eigen::VectorXi>(static_cast<const int*>(m_cholmodFactor->Perm),
                                              static_cast<Eigen::Index>(m_cholmodFactor->n));
+  }
+
+ private:
+  // The analysis by the one `method`, with `ordering` when it is given.
+  void analyze_with(const Eigen::SparseMatrix<double>& matrix, int method, int* ordering) {
+    if (m_cholmodFactor) {
+      cholmod_free_factor(&m_cholmodFactor, &cholmod());
+      m_cholmodFactor = nullptr;
+    }
+    cholmod_sparse a = Eigen::viewAsCholmod(matrix.selfadjointView<Eigen::Lower>());
+    cholmod().nmethods = 1;
+    cholmod().method[0].ordering = method;
+    m_cholmodFactor = cholmod_analyze_p(&a, ordering, nullptr, 0, &cholmod());
+    m_isInitialized = true;
+    m_info = m_cholmodFactor ? Eigen::Success : Eigen::InvalidInput;
+    m_analysisIsOk = m_cholmodFactor != nullptr;
+    m_factorizationIsOk = false;
   }
 };
 
