@@ -20,8 +20,9 @@ Eigen::Vector2d half_angle(double c, double s) {
 }
 
 // (x, y) over its length; (1, 0) for the zero vector (any angle does).
+// Not hypot: no overflow at these sizes, and its guard against one is slow.
 Eigen::Vector2d direction(double x, double y) {
-  const double length = std::sqrt(x * x + y * y);  // no overflow at these sizes: not hypot, whose guard against it is slow
+  const double length = std::sqrt(x * x + y * y);
   return length > 0.0 ? Eigen::Vector2d(x / length, y / length) : Eigen::Vector2d(1.0, 0.0);
 }
 
