@@ -41,6 +41,10 @@ constexpr int kNewtonIterations = 50;
 // and the last iterations before this creep (a tenth of a percent each) on
 // triangles the barrier still holds inverted.
 constexpr double kNewtonSettled = 1e-3;
+// Triangles whose Hessians are computed together and handed to Newton's
+// system (minimize_newton.h) at once: 18 MB, where the whole mesh's at
+// once took 36 numbers per triangle beside the factor.
+constexpr long kHessianBlock = 1L << 16;
 // From this many triangles on, the rounds are Newton's (automatic, header).
 // Room: a determinant (area over scaled input area) above this. Far below
 // the collapsed threshold (quality.h), far above rounding: triangles that
@@ -319,7 +323,7 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
   // Per thread: its triangles' share of the gradient, summed afterwards.
   std::vector<Eigen::VectorXd> partial(std::max(1, parallel_threads(static_cast<long>(count))));
   auto energy_of = [&](const std::vector<Triangle>& list, const Eigen::VectorXd& at, Eigen::VectorXd* gradient,
-                       std::vector<double>* hessians) {
+                       const HessianSink* hessians) {
     const long size = static_cast<long>(list.size());
     const int threads = parallel_threads(size);
     double total = 0.0;
@@ -331,11 +335,16 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
       total += energy_of_range(list.data() + first, end - first, at, eps, gradient ? part.data() : nullptr);
     }
     if (hessians) {
-      hessians->resize(36 * list.size());
-#pragma omp parallel for num_threads(threads) schedule(static)
-      for (long i = 0; i < size; ++i) {
-        const Matrix6d hessian = triangle_hessian(list[i], at, eps);
-        std::copy(hessian.data(), hessian.data() + 36, hessians->data() + 36 * i);
+      // In blocks, each computed on every thread, then handed over.
+      std::vector<double> block(36 * std::min(size, kHessianBlock));
+      for (long first = 0; first < size; first += kHessianBlock) {
+        const long count = std::min(kHessianBlock, size - first);
+#pragma omp parallel for num_threads(parallel_threads(count)) schedule(static)
+        for (long i = 0; i < count; ++i) {
+          const Matrix6d hessian = triangle_hessian(list[first + i], at, eps);
+          std::copy(hessian.data(), hessian.data() + 36, block.data() + 36 * i);
+        }
+        (*hessians)(first, count, block.data());
       }
     }
     if (gradient) {
@@ -368,7 +377,7 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
       for (int corner = 0; corner < 3; ++corner)
         for (int c = 0; c < 2; ++c) corners[6 * i + 2 * corner + c] = list[i].unknown[corner][c];
     const ElementObjective objective = [&](const Eigen::VectorXd& p, Eigen::VectorXd* gradient,
-                                           std::vector<double>* hessians) {
+                                           const HessianSink* hessians) {
       return energy_of(list, p, gradient, hessians);
     };
     const NewtonResult run =

@@ -113,12 +113,18 @@ struct NewtonMinimizer::System {
     return k == element_size && free_count == free && unknowns == element_unknowns;
   }
 
-  // The assembled Hessian's values, without a shift.
-  void assemble(const std::vector<double>& hessians) {
+  // The assembled Hessian's values, without a shift: cleared, then each
+  // block of elements' Hessians added in as the objective hands it over.
+  void clear() {
     double* values = matrix.valuePtr();
     std::fill(values, values + matrix.nonZeros(), 0.0);
-    for (size_t i = 0; i < position.size(); ++i)
-      if (position[i] >= 0) values[position[i]] += hessians[i];
+  }
+  void add(size_t first, size_t count, const double* hessians) {
+    double* values = matrix.valuePtr();
+    const size_t kk = static_cast<size_t>(element_size) * element_size;
+    const int* at_position = position.data() + first * kk;
+    for (size_t i = 0; i < count * kk; ++i)
+      if (at_position[i] >= 0) values[at_position[i]] += hessians[i];
   }
 };
 
@@ -130,12 +136,21 @@ NewtonResult NewtonMinimizer::minimize(const ElementObjective& objective, const 
                                        double gradient_tolerance, double relative_tolerance,
                                        const std::function<bool()>& stop) {
   NewtonResult result;
-  if (!system_ || !system_->same(element_unknowns, element_size, free))
+  if (!system_ || !system_->same(element_unknowns, element_size, free)) {
+    // The old system (its factor the largest thing in memory at scale) goes
+    // before the new one is built, not after.
+    system_.reset();
     system_ = std::make_unique<System>(element_unknowns, element_size, free);
+  }
   System& s = *system_;
   Eigen::VectorXd gradient(x.size());
-  std::vector<double> hessians;
-  double value = objective(x, &gradient, &hessians);
+  const HessianSink hessians = [&s](size_t first, size_t count, const double* block) { s.add(first, count, block); };
+  // The objective with its gradient and the Hessian assembled.
+  const auto evaluate = [&](const Eigen::VectorXd& at) {
+    s.clear();
+    return objective(at, &gradient, &hessians);
+  };
+  double value = evaluate(x);
   for (; result.iterations < max_iterations; ++result.iterations) {
     if (!std::isfinite(value) || free == 0 || gradient.head(free).lpNorm<Eigen::Infinity>() < gradient_tolerance) {
       result.converged = std::isfinite(value);
@@ -145,7 +160,6 @@ NewtonResult NewtonMinimizer::minimize(const ElementObjective& objective, const 
       result.stopped = true;
       break;
     }
-    s.assemble(hessians);
     double* values = s.matrix.valuePtr();
     double mean_diagonal = 0.0;
     for (const int d : s.diagonal) mean_diagonal += std::abs(values[d]);
@@ -193,7 +207,7 @@ NewtonResult NewtonMinimizer::minimize(const ElementObjective& objective, const 
       ++result.iterations;
       break;
     }
-    value = objective(x, &gradient, &hessians);
+    value = evaluate(x);
   }
   result.value = value;
   return result;

@@ -20,12 +20,18 @@
 
 namespace polycube {
 
+// Takes the Hessians of elements first .. first + count - 1: each element's
+// K x K Hessian in its K unknowns, positive semi-definite, column-major, K * K
+// numbers per element. The minimiser adds them into its system as they come,
+// so an objective hands them over in blocks of its choice, in element order,
+// and never holds all of them (a million triangles: 290 MB beside the factor).
+using HessianSink = std::function<void(size_t first, size_t count, const double* hessians)>;
 // Returns f(x). When `gradient` is not null, writes the gradient into it
-// (sized like x). When `hessians` is not null, writes each element's K x K
-// Hessian in its K unknowns, positive semi-definite, column-major, K * K
-// numbers per element in element order. f may be +infinity where undefined.
+// (sized like x). When `hessians` is not null, gives it every element's
+// Hessian, each element once, in element order. f may be +infinity where
+// undefined.
 using ElementObjective =
-    std::function<double(const Eigen::VectorXd& x, Eigen::VectorXd* gradient, std::vector<double>* hessians)>;
+    std::function<double(const Eigen::VectorXd& x, Eigen::VectorXd* gradient, const HessianSink* hessians)>;
 
 struct NewtonResult {
   int iterations = 0;

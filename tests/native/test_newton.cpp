@@ -168,7 +168,7 @@ TEST(BarrierEnergy, ClosedFormProjectionMatchesTheEigenDecomposition) {
 // Rosenbrock's valley as one element of two unknowns, its Hessian projected
 // as the untangling's are: Newton needs a tenth of L-BFGS's iterations.
 TEST(MinimizeNewton, FindsTheRosenbrockMinimumInFewIterations) {
-  const ElementObjective rosenbrock = [](const Eigen::VectorXd& x, Eigen::VectorXd* g, std::vector<double>* h) {
+  const ElementObjective rosenbrock = [](const Eigen::VectorXd& x, Eigen::VectorXd* g, const HessianSink* h) {
     const double a = 1.0 - x[0], b = x[1] - x[0] * x[0];
     if (g) {
       g->resize(2);
@@ -180,7 +180,7 @@ TEST(MinimizeNewton, FindsTheRosenbrockMinimumInFewIterations) {
       m << 2.0 - 400.0 * b + 800.0 * x[0] * x[0], -400.0 * x[0], -400.0 * x[0], 200.0;
       const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(m);
       m = eigen.eigenvectors() * eigen.eigenvalues().cwiseAbs().asDiagonal() * eigen.eigenvectors().transpose();
-      h->assign(m.data(), m.data() + 4);
+      (*h)(0, 1, m.data());
     }
     return a * a + 100.0 * b * b;
   };
@@ -215,10 +215,10 @@ TEST(MinimizeNewton, SolvesAQuadraticInOneStepAndHoldsTheRest) {
       if (i > 0) elements.insert(elements.end(), {n - 1 - i, n - 1}), rests.push_back(i);
     }
     elements.push_back(3), elements.push_back(3), rests.push_back(0.0);  // on one unknown twice: zero energy
-    const ElementObjective springs = [&](const Eigen::VectorXd& x, Eigen::VectorXd* g, std::vector<double>* h) {
+    // Handed over one element at a time, the smallest blocks there are.
+    const ElementObjective springs = [&](const Eigen::VectorXd& x, Eigen::VectorXd* g, const HessianSink* h) {
       double f = 0.0;
       if (g) g->setZero(x.size());
-      if (h) h->clear();
       for (size_t e = 0; e < rests.size(); ++e) {
         const int a = elements[2 * e], b = elements[2 * e + 1];
         const double r = a == b ? 0.0 : x[a] - x[b] - rests[e];
@@ -226,7 +226,8 @@ TEST(MinimizeNewton, SolvesAQuadraticInOneStepAndHoldsTheRest) {
         if (g && a != b) (*g)[a] += 2.0 * r, (*g)[b] -= 2.0 * r;
         if (h) {
           const double s = a == b ? 0.0 : 2.0;
-          h->insert(h->end(), {s, -s, -s, s});
+          const double block[4] = {s, -s, -s, s};
+          (*h)(e, 1, block);
         }
       }
       return f;
@@ -241,6 +242,59 @@ TEST(MinimizeNewton, SolvesAQuadraticInOneStepAndHoldsTheRest) {
     double error = 0.0;
     for (int i = 1; i < n; ++i) error = std::max(error, std::abs(x[n - 1 - i] - (5.0 + i)));
     EXPECT_LT(error, 1e-9) << n;
+  }
+}
+
+// A chain of nonlinear springs, each element (x_a - x_b - 1)^4 + (x_a - x_b)^2 / 10
+// in two unknowns: several Newton steps from a stretched start. The
+// Hessians are handed over in blocks of `block` elements.
+ElementObjective quartic_springs(const std::vector<int>& elements, size_t block) {
+  return [&elements, block](const Eigen::VectorXd& x, Eigen::VectorXd* g, const HessianSink* h) {
+    const size_t count = elements.size() / 2;
+    double f = 0.0;
+    if (g) g->setZero(x.size());
+    std::vector<double> hessians;
+    for (size_t e = 0; e < count; ++e) {
+      const int a = elements[2 * e], b = elements[2 * e + 1];
+      const double d = x[a] - x[b], r = d - 1.0;
+      f += r * r * r * r + 0.1 * d * d;
+      const double slope = 4.0 * r * r * r + 0.2 * d, curvature = 12.0 * r * r + 0.2;
+      if (g) (*g)[a] += slope, (*g)[b] -= slope;
+      hessians.insert(hessians.end(), {curvature, -curvature, -curvature, curvature});
+      if (h && (hessians.size() == 4 * block || e + 1 == count)) {
+        (*h)(e + 1 - hessians.size() / 4, hessians.size() / 4, hessians.data());
+        hessians.clear();
+      }
+    }
+    return f;
+  };
+}
+
+std::vector<int> chain_elements(int n) {
+  std::vector<int> elements;
+  for (int i = 0; i + 1 < n; ++i) elements.insert(elements.end(), {i, i + 1});
+  return elements;
+}
+
+// Hessians handed over in blocks of any size build the same system as all at
+// once: the same steps bit for bit (the last unknown held).
+TEST(MinimizeNewton, HessiansInBlocksGiveTheSameStepsBitForBit) {
+  const int n = 500;
+  const std::vector<int> elements = chain_elements(n);
+  std::vector<Eigen::VectorXd> results;
+  std::vector<int> iterations;
+  for (const size_t block : {elements.size() / 2, size_t{1}, size_t{7}}) {
+    Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(n, 0.0, 0.5 * n);
+    NewtonMinimizer newton;
+    const NewtonResult r = newton.minimize(quartic_springs(elements, block), elements, 2, n - 1, x, 20, 1e-12, 0.0);
+    EXPECT_GT(r.iterations, 3) << block;
+    results.push_back(x);
+    iterations.push_back(r.iterations);
+  }
+  for (size_t k = 1; k < results.size(); ++k) {
+    EXPECT_EQ(iterations[k], iterations[0]);
+    EXPECT_TRUE(results[k] == results[0]) << "blocks of another size moved the result by "
+                                          << (results[k] - results[0]).lpNorm<Eigen::Infinity>();
   }
 }
 
