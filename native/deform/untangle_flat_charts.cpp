@@ -42,9 +42,9 @@ constexpr int kNewtonIterations = 50;
 // triangles the barrier still holds inverted.
 constexpr double kNewtonSettled = 1e-3;
 // Triangles whose Hessians are computed together and handed to Newton's
-// system (minimize_newton.h) at once: 18 MB, where the whole mesh's at
+// system (minimize_newton.h) at once: 4.7 MB, where the whole mesh's at
 // once took 36 numbers per triangle beside the factor.
-constexpr long kHessianBlock = 1L << 16;
+constexpr long kHessianBlock = 1L << 14;
 // From this many triangles on, the rounds are Newton's (automatic, header).
 // Room: a determinant (area over scaled input area) above this. Far below
 // the collapsed threshold (quality.h), far above rounding: triangles that
@@ -338,13 +338,13 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
       // In blocks, each computed on every thread, then handed over.
       std::vector<double> block(36 * std::min(size, kHessianBlock));
       for (long first = 0; first < size; first += kHessianBlock) {
-        const long count = std::min(kHessianBlock, size - first);
-#pragma omp parallel for num_threads(parallel_threads(count)) schedule(static)
-        for (long i = 0; i < count; ++i) {
+        const long in_block = std::min(kHessianBlock, size - first);
+#pragma omp parallel for num_threads(threads) schedule(static)
+        for (long i = 0; i < in_block; ++i) {
           const Matrix6d hessian = triangle_hessian(list[first + i], at, eps);
           std::copy(hessian.data(), hessian.data() + 36, block.data() + 36 * i);
         }
-        (*hessians)(first, count, block.data());
+        (*hessians)(first, in_block, block.data());
       }
     }
     if (gradient) {
