@@ -2,7 +2,6 @@
 
 #include "deform/flatten_charts.h"
 #include "deform/robust_run.h"
-#include "deform/untangle_flat_charts.h"
 #include "deform/untangle_step.h"
 
 namespace polycube {
@@ -30,13 +29,7 @@ void flatten_stage(RobustRun& run, int iteration) {
   if (!flat.found && flat.first_positions.size() > 0) {
     CollapseBound bound;
     bound.area = d.options.max_collapsed_share;  // refused above, below
-    // At scale the untangling factorises Newton's system, several times the
-    // size of a chart's: the refused charts' factors are not held beside it
-    // (bunny00 refined 4 times: 113 of the 415 MB of factors at the peak).
-    // Their orderings stay, so the charts kept below are factorised again
-    // for the same factors, bit for bit.
-    if (d.triangles().rows() >= kUntangleNewtonFrom) flat.planes->release();
-    UntangleStep opened = untangle_step(run, flat.first_positions, bound);
+    UntangleStep opened = untangle_step(run, flat.first_positions, *flat.planes, bound);
     attempt.untangle_seconds = d.phase.lap();
     attempt.untangle_rounds = opened.rounds;
     result.seconds.solve += attempt.untangle_seconds;

@@ -49,10 +49,8 @@ Vertices relaxed_target(RobustRun& run, ChartPlanes& planes) {
 
 // Stage 5's last try: the untangling of what the relaxed charts left
 // collapsed; kept only with fewer collapsed triangles. Returns whether it
-// was kept (or `found` when not tried). `release`: the planes' factors
-// freed first, not in memory beside the untangling's (refactorised if
-// needed again).
-bool untangle_collapsed(RobustRun& run, int iteration, bool found, bool release) {
+// was kept (or `found` when not tried).
+bool untangle_collapsed(RobustRun& run, int iteration, bool found) {
   Deformation& d = run.d;
   DeformResult& result = d.result;
   if ((found && !run.relaxed) || run.untangle_tried) return found;
@@ -60,10 +58,9 @@ bool untangle_collapsed(RobustRun& run, int iteration, bool found, bool release)
   if (collapsed == 0 || (result.untangled && d.quality.collapsed_area_fraction(run.state) <= kUntangleAgainAbove))
     return found;
   run.untangle_tried = true;
-  if (release) run.planes->release();
   CollapseBound bound;
   bound.triangles = collapsed - 1;  // kept only with fewer collapsed, below
-  UntangleStep opened = untangle_step(run, d.x, bound);
+  UntangleStep opened = untangle_step(run, d.x, *run.planes, bound);
   const int left = count(opened.states.collapsed);
   if (opened.fold_free && left < collapsed) {
     d.x = std::move(opened.positions);
@@ -94,7 +91,7 @@ bool relax_stage(RobustRun& run, int iteration) {
   // opened none of them there (B0 refined 16 times: 0.11 s against 0.95 s,
   // all 80 slivers opened by the untangling): it is tried first.
   const bool untangle_first = d.triangles().rows() >= kUntangleNewtonFrom;
-  if (untangle_first) found = untangle_collapsed(run, iteration, found, true);
+  if (untangle_first) found = untangle_collapsed(run, iteration, found);
   if ((!found || run.relaxed) && !run.uncollapsed && result.collapsed_on_purpose > 0) {
     run.uncollapsed = true;
     auto free_planes = run.charts_like(*run.planes);
@@ -107,7 +104,7 @@ bool relax_stage(RobustRun& run, int iteration) {
     }
     result.seconds.factorize += d.phase.lap();
   }
-  if (!untangle_first) found = untangle_collapsed(run, iteration, found, false);
+  if (!untangle_first) found = untangle_collapsed(run, iteration, found);
   return found;
 }
 

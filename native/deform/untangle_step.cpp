@@ -1,12 +1,14 @@
 #include "deform/untangle_step.h"
 
+#include "deform/chart_planes.h"
 #include "deform/robust_run.h"
 #include "deform/untangle_flat_charts.h"
 
 namespace polycube {
 
-UntangleStep untangle_step(RobustRun& run, const Vertices& flat, const CollapseBound& bound) {
+UntangleStep untangle_step(RobustRun& run, const Vertices& flat, ChartPlanes& factored, const CollapseBound& bound) {
   Deformation& d = run.d;
+  if (d.triangles().rows() >= kUntangleNewtonFrom) factored.release();
   const StageTimer timer(d.result.stages.untangle, d.set_apart);
   UntangleStep opened;
   const UntangledCharts untangled =

@@ -194,7 +194,7 @@ TEST(DeformStages, UntangleStepOpensCollapsedSliversInsideTheirCharts) {
   ASSERT_TRUE(run.planes);
   const int collapsed = count(run.state.collapsed);
   ASSERT_GT(collapsed, 0);
-  const UntangleStep opened = untangle_step(run, d.x);
+  const UntangleStep opened = untangle_step(run, d.x, *run.planes, {});
   EXPECT_TRUE(opened.fold_free);
   EXPECT_LT(count(opened.states.collapsed), collapsed);
   EXPECT_LT(d.quality.measure(opened.positions, opened.states).normal_deviation_max_deg, 1e-6);

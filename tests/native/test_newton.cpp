@@ -245,48 +245,43 @@ TEST(MinimizeNewton, SolvesAQuadraticInOneStepAndHoldsTheRest) {
   }
 }
 
-// A chain of nonlinear springs, each element (x_a - x_b - 1)^4 + (x_a - x_b)^2 / 10
-// in two unknowns: several Newton steps from a stretched start. The
-// Hessians are handed over in blocks of `block` elements.
-ElementObjective quartic_springs(const std::vector<int>& elements, size_t block) {
-  return [&elements, block](const Eigen::VectorXd& x, Eigen::VectorXd* g, const HessianSink* h) {
-    const size_t count = elements.size() / 2;
-    double f = 0.0;
-    if (g) g->setZero(x.size());
-    std::vector<double> hessians;
-    for (size_t e = 0; e < count; ++e) {
-      const int a = elements[2 * e], b = elements[2 * e + 1];
-      const double d = x[a] - x[b], r = d - 1.0;
-      f += r * r * r * r + 0.1 * d * d;
-      const double slope = 4.0 * r * r * r + 0.2 * d, curvature = 12.0 * r * r + 0.2;
-      if (g) (*g)[a] += slope, (*g)[b] -= slope;
-      hessians.insert(hessians.end(), {curvature, -curvature, -curvature, curvature});
-      if (h && (hessians.size() == 4 * block || e + 1 == count)) {
-        (*h)(e + 1 - hessians.size() / 4, hessians.size() / 4, hessians.data());
-        hessians.clear();
-      }
-    }
-    return f;
-  };
-}
-
-std::vector<int> chain_elements(int n) {
-  std::vector<int> elements;
-  for (int i = 0; i + 1 < n; ++i) elements.insert(elements.end(), {i, i + 1});
-  return elements;
-}
-
 // Hessians handed over in blocks of any size build the same system as all at
-// once: the same steps bit for bit (the last unknown held).
+// once: the same steps bit for bit. A chain of nonlinear springs, each
+// element (x_a - x_b - 1)^4 + (x_a - x_b)^2 / 10 in two unknowns, several
+// Newton steps from a stretched start, the last unknown held.
 TEST(MinimizeNewton, HessiansInBlocksGiveTheSameStepsBitForBit) {
   const int n = 500;
-  const std::vector<int> elements = chain_elements(n);
+  std::vector<int> elements;
+  for (int i = 0; i + 1 < n; ++i) elements.insert(elements.end(), {i, i + 1});
+  const size_t count = elements.size() / 2;
+  // Its Hessians handed over `block` elements at a time.
+  auto springs = [&](size_t block) -> ElementObjective {
+    return [&, block](const Eigen::VectorXd& x, Eigen::VectorXd* g, const HessianSink* h) {
+      double f = 0.0;
+      if (g) g->setZero(x.size());
+      std::vector<double> hessians;
+      for (size_t e = 0; e < count; ++e) {
+        const int a = elements[2 * e], b = elements[2 * e + 1];
+        const double d = x[a] - x[b], r = d - 1.0;
+        f += r * r * r * r + 0.1 * d * d;
+        const double slope = 4.0 * r * r * r + 0.2 * d, curvature = 12.0 * r * r + 0.2;
+        if (g) (*g)[a] += slope, (*g)[b] -= slope;
+        if (!h) continue;
+        hessians.insert(hessians.end(), {curvature, -curvature, -curvature, curvature});
+        if (hessians.size() == 4 * block || e + 1 == count) {
+          (*h)(e + 1 - hessians.size() / 4, hessians.size() / 4, hessians.data());
+          hessians.clear();
+        }
+      }
+      return f;
+    };
+  };
   std::vector<Eigen::VectorXd> results;
   std::vector<int> iterations;
-  for (const size_t block : {elements.size() / 2, size_t{1}, size_t{7}}) {
+  for (const size_t block : {count, size_t{1}, size_t{7}}) {
     Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(n, 0.0, 0.5 * n);
     NewtonMinimizer newton;
-    const NewtonResult r = newton.minimize(quartic_springs(elements, block), elements, 2, n - 1, x, 20, 1e-12, 0.0);
+    const NewtonResult r = newton.minimize(springs(block), elements, 2, n - 1, x, 20, 1e-12, 0.0);
     EXPECT_GT(r.iterations, 3) << block;
     results.push_back(x);
     iterations.push_back(r.iterations);
