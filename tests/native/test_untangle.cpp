@@ -6,6 +6,8 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cmath>
+#include <functional>
 #include <set>
 
 #include "deform/quality.h"
@@ -165,6 +167,31 @@ TEST(UntangleFlatCharts, RoundsGoLocalForAFewTrianglesWithoutRoomNotForAShareOfT
   EXPECT_TRUE(b.untangled);
 }
 
+// Newton's rounds (the minimiser from 100,000 triangles on) on `crushed`,
+// a flat map of `b` that turns nothing over: every round local, every
+// triangle given room, the charts flat, and each vertex `far` says the
+// local rings cannot reach exactly where the caller put it. Returns how
+// many vertices were far.
+int expect_opened_locally(const Block& b, const Vertices& crushed, const std::function<bool(Eigen::Index)>& far) {
+  const UntangledCharts u = untangle_flat_charts(b.vertices, crushed, b.triangles, b.labels, kUntangleRounds,
+                                                 kUntangleLocalShare, {}, UntangleMinimiser::newton);
+  EXPECT_TRUE(u.untangled);
+  EXPECT_EQ(u.put_on_a_line, 0);
+  EXPECT_GT(u.rounds, 0);
+  EXPECT_EQ(u.local_rounds, u.rounds);
+  EXPECT_TRUE(flat(u.positions, b));
+  const Figures after = QualityMeasure(b.vertices, b.triangles, b.labels).measure(u.positions);
+  EXPECT_EQ(after.collapsed_faces, 0);
+  EXPECT_EQ(after.flipped_faces, 0);
+  int count = 0;
+  for (Eigen::Index v = 0; v < crushed.rows(); ++v) {
+    if (!far(v)) continue;
+    ++count;
+    EXPECT_EQ(u.positions.row(v), crushed.row(v));
+  }
+  return count;
+}
+
 TEST(UntangleFlatCharts, AFewSliversAreOpenedLocallyAndTheRestOfTheMapKept) {
   // A 16 x 16 x 8 block (2,048 triangles) whose top has one vertex moved
   // onto its neighbour: the two triangles between them collapse, a few
@@ -184,23 +211,36 @@ TEST(UntangleFlatCharts, AFewSliversAreOpenedLocallyAndTheRestOfTheMapKept) {
   ASSERT_GT(quality.measure(crushed).collapsed_faces, 0);
   ASSERT_TRUE(flat(crushed, b));
 
-  const UntangledCharts u = untangle_flat_charts(b.vertices, crushed, b.triangles, b.labels, kUntangleRounds,
-                                                 kUntangleLocalShare, {}, UntangleMinimiser::newton);
-  EXPECT_TRUE(u.untangled);
-  EXPECT_EQ(u.put_on_a_line, 0);
-  EXPECT_GT(u.rounds, 0);
-  EXPECT_EQ(u.local_rounds, u.rounds);
-  EXPECT_TRUE(flat(u.positions, b));
-  const Figures after = quality.measure(u.positions);
-  EXPECT_EQ(after.collapsed_faces, 0);
-  EXPECT_EQ(after.flipped_faces, 0);
-  int far = 0;
-  for (Eigen::Index v = 0; v < crushed.rows(); ++v) {
-    if ((b.vertices.row(v) - b.vertices.row(moved)).lpNorm<Eigen::Infinity>() <= 4.0) continue;
-    ++far;
-    EXPECT_EQ(u.positions.row(v), crushed.row(v));
-  }
+  const int far = expect_opened_locally(b, crushed, [&](Eigen::Index v) {
+    return (b.vertices.row(v) - b.vertices.row(moved)).lpNorm<Eigen::Infinity>() > 4.0;
+  });
   EXPECT_GT(far, 900);  // of 1,026
+}
+
+TEST(UntangleFlatCharts, ManySliversAtScaleAreOpenedLocallyToo) {
+  // The block of the test above with fifteen vertices of its top moved
+  // onto their neighbours: thirty triangles collapse, more than the few
+  // (1% of 2,048) for which rounds go local on their own. Nothing is
+  // turned over, so Newton's rounds are all local all the same, and the
+  // bottom of the block, beyond every local ring, stays where the caller
+  // put it bit for bit (a global round, as the rounds were until the
+  // triangles without room were few, moves the whole map).
+  const Block b = block(16, 16, 8);
+  Vertices crushed = b.vertices;
+  int moved = 0;
+  for (Eigen::Index v = 0; v < crushed.rows(); ++v) {
+    const double x = crushed(v, 0), y = crushed(v, 1);
+    if (crushed(v, 2) == 8.0 && (x == 2.0 || x == 6.0 || x == 10.0) && std::fmod(y, 3.0) == 2.0)
+      crushed(v, 0) = x + 1.0, ++moved;
+  }
+  ASSERT_EQ(moved, 15);
+  const QualityMeasure quality(b.vertices, b.triangles, b.labels);
+  ASSERT_GT(quality.measure(crushed).collapsed_faces, 20);
+  ASSERT_EQ(quality.measure(crushed).flipped_faces, 0);
+  ASSERT_TRUE(flat(crushed, b));
+
+  const int far = expect_opened_locally(b, crushed, [&](Eigen::Index v) { return crushed(v, 2) <= 3.0; });
+  EXPECT_GT(far, 300);
 }
 
 TEST(UntangleFlatCharts, StopsOnceTheCollapsesPassTheCallersBound) {
