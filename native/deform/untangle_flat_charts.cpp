@@ -467,8 +467,8 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
   // in 0.15 and 1.5 s instead of 7 and 43 s, edge and area error lower
   // after the polish; bunny00 refined 4 times, 26,464 collapsed: 63 s of
   // global rounds, most of them one that crept for 50 Newton iterations,
-  // against 8 s, and its deformation 325 -> 229 s with fewer triangles
-  // collapsed in the end). Where triangles are turned over (a first flattening), the
+  // against 8 s; docs/design.md section 2.6, stage 7, has what it does to
+  // whole runs). Where triangles are turned over (a first flattening), the
   // global rounds still follow: fandisk's first flattening untangled with
   // local rounds alone had area error 0.188 instead of 0.172; and L-BFGS's
   // finishing round costs little and lowers the area error where it runs
