@@ -1,5 +1,7 @@
 // The `polycube` command-line program: the native core without Blender, for
 // batch work, benchmarks and users outside Blender.
+#include <malloc.h>
+
 #include <cstdio>
 #include <cstring>
 #include <exception>
@@ -58,6 +60,12 @@ int finish(const char* program, int status) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // One malloc arena: the flat charts' factors are made on worker threads
+  // (deform/chart_planes.h) and freed by the main thread, and with an arena
+  // per thread the blocks they leave serve only their own thread (B0's peak
+  // up to 25.5 MiB instead of 24.6). The threads allocate seldom and in
+  // large blocks, so they do not queue on one arena.
+  mallopt(M_ARENA_MAX, 1);
   if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
     print_usage(argc < 2 ? stderr : stdout);
     return argc < 2 ? 2 : finish("polycube", 0);

@@ -1,9 +1,11 @@
 #include "deform/chart_planes.h"
 
 #include <algorithm>
+#include <exception>
 #include <type_traits>
 #include <utility>
 
+#include "linear_algebra/parallel.h"
 #include "linear_algebra/sparse_cholesky.h"
 
 namespace polycube {
@@ -164,33 +166,54 @@ SparseCholesky::Ordering joined_ordering(const SparseCholesky::Ordering& ordered
 
 void ChartPlanes::factorize(const Eigen::SparseMatrix<double>& laplacian) {
   const int n = static_cast<int>(laplacian.rows());
-  std::vector<int> of_root;
+  std::vector<int> of_root, axes;
+  std::array<int, 3> unknowns{};
   for (int axis = 0; axis < 3; ++axis) {
     if (!changed_[axis]) continue;
     changed_[axis] = false;
     ++factorizations_;
-    // One unknown per union-find set.
-    std::vector<int>& unknown = unknown_[axis];
-    const int m = number_unknowns(axis, n, of_root, unknown);
-    const Eigen::SparseMatrix<double> reduced = reduced_matrix(laplacian, unknown, m);
+    // One unknown per union-find set (serial: finding roots compresses paths).
+    unknowns[axis] = number_unknowns(axis, n, of_root, unknown_[axis]);
     cholesky_[axis].reset();  // before the new factor: never two of one axis in memory
-    auto cholesky = std::make_shared<SparseCholesky>();
-    // The charts' own ordering when known; at scale, one joined from it for
-    // a system with collapses (where an analysis costs most); otherwise
-    // computed. Below that, a system with collapses is analysed afresh as
-    // it always was: another ordering rounds its factor otherwise, and the
-    // runs' decisions follow figures near their bounds (the anchor's last
-    // resort ended with 15% of its area collapsed instead of 0.03%).
-    const ChartOrdering* charts = chart_orderings_[axis].get();
-    const bool joined =
-        charts && (charts_only_[axis] ? charts->unknown == unknown : m >= SparseCholesky::kSupernodalThreshold);
-    cholesky->analyze(
-        reduced, joined ? joined_ordering(charts->ordering, charts->unknown, unknown, m) : SparseCholesky::Ordering());
-    if (charts_only_[axis] && !joined)
-      chart_orderings_[axis] = std::make_shared<const ChartOrdering>(ChartOrdering{cholesky->ordering(), unknown});
-    cholesky->factorize(reduced);
-    cholesky_[axis] = std::move(cholesky);
+    axes.push_back(axis);
   }
+  // The axes' systems are independent: each analysed and factorised on a
+  // thread of its own, the largest first (on two cores the other two follow
+  // it on the second).
+  std::stable_sort(axes.begin(), axes.end(), [&](int a, int b) { return unknowns[a] > unknowns[b]; });
+  const int count = static_cast<int>(axes.size());
+  std::array<std::exception_ptr, 3> failures;
+#pragma omp parallel for num_threads(task_threads(count)) schedule(dynamic, 1)
+  for (int i = 0; i < count; ++i) {
+    try {
+      factorize_axis(laplacian, axes[i], unknowns[axes[i]]);
+    } catch (...) {
+      failures[i] = std::current_exception();
+    }
+  }
+  for (const std::exception_ptr& failure : failures)
+    if (failure) std::rethrow_exception(failure);
+}
+
+void ChartPlanes::factorize_axis(const Eigen::SparseMatrix<double>& laplacian, int axis, int m) {
+  const std::vector<int>& unknown = unknown_[axis];
+  const Eigen::SparseMatrix<double> reduced = reduced_matrix(laplacian, unknown, m);
+  auto cholesky = std::make_shared<SparseCholesky>();
+  // The charts' own ordering when known; at scale, one joined from it for
+  // a system with collapses (where an analysis costs most); otherwise
+  // computed. Below that, a system with collapses is analysed afresh as
+  // it always was: another ordering rounds its factor otherwise, and the
+  // runs' decisions follow figures near their bounds (the anchor's last
+  // resort ended with 15% of its area collapsed instead of 0.03%).
+  const ChartOrdering* charts = chart_orderings_[axis].get();
+  const bool joined =
+      charts && (charts_only_[axis] ? charts->unknown == unknown : m >= SparseCholesky::kSupernodalThreshold);
+  cholesky->analyze(reduced,
+                    joined ? joined_ordering(charts->ordering, charts->unknown, unknown, m) : SparseCholesky::Ordering());
+  if (charts_only_[axis] && !joined)
+    chart_orderings_[axis] = std::make_shared<const ChartOrdering>(ChartOrdering{cholesky->ordering(), unknown});
+  cholesky->factorize(reduced);
+  cholesky_[axis] = std::move(cholesky);
 }
 
 template <int K>
@@ -201,6 +224,8 @@ std::array<Vertices, K> ChartPlanes::solve_together(const std::array<const Eigen
   const Eigen::Index n = rhs[0]->rows();
   std::array<Vertices, K> x;
   for (Vertices& solution : x) solution.resize(n, 3);
+  // Independent back-substitutions, each axis's on a thread of its own.
+#pragma omp parallel for num_threads(task_threads(3)) schedule(dynamic, 1)
   for (int axis = 0; axis < 3; ++axis) {
     const std::vector<int>& unknown = unknown_[axis];
     Columns b = Columns::Zero(cholesky_[axis]->rows(), K);

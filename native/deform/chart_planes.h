@@ -41,8 +41,9 @@ class ChartPlanes {
   // deformation.h) to the flat-chart positions and factorises it, once per axis.
   // Called again after collapse() with the same L, it redoes only the axes
   // whose charts changed; at scale each ordered from the charts' own system
-  // (whose unknowns its own join) rather than analysed afresh. Throws Error
-  // when a factorisation fails.
+  // (whose unknowns its own join) rather than analysed afresh. The axes'
+  // systems are independent: each on a thread of its own, the same factors
+  // bit for bit as on one. Throws Error when a factorisation fails.
   void factorize(const Eigen::SparseMatrix<double>& laplacian);
   int factorizations() const { return factorizations_; }
   // Calls of solve() (three back-substitutions each, one per axis).
@@ -76,7 +77,8 @@ class ChartPlanes {
   bool solve_near(const Eigen::SparseMatrix<double>& laplacian, const Eigen::MatrixX3d& rhs,
                   const std::vector<char>& region, Vertices& positions) const;
   // Minimises x^T L x / 2 - b^T x over the positions with flat charts; `rhs`
-  // is the n x 3 b. Uses the charts and collapses of the last factorize().
+  // is the n x 3 b. Uses the charts and collapses of the last factorize();
+  // each axis's back-substitution on a thread of its own.
   Vertices solve(const Eigen::MatrixX3d& rhs) const;
   // Two solves at once, each to the bits it would have alone, reading each
   // factor once (sparse_cholesky.h); counted as two.
@@ -87,6 +89,9 @@ class ChartPlanes {
 
  private:
   int root(int axis, int v) const;
+  // The analysis and factorisation of one axis's system of `m` unknowns
+  // (unknown_[axis] numbered): touches only that axis's members.
+  void factorize_axis(const Eigen::SparseMatrix<double>& laplacian, int axis, int m);
   void join(int axis, int a, int b);
   // Per vertex, its set's unknown of `axis`: the sets numbered in the order
   // of their first vertex, so equal partitions give equal unknowns. Returns

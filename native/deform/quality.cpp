@@ -139,7 +139,10 @@ double QualityMeasure::fold_flags(const Vertices& output, TriangleAreas& areas, 
 
 double QualityMeasure::rescale_moved(const Vertices& output, const std::vector<int>& moved,
                                      TriangleAreas& areas) const {
-  for (int f : moved) {
+  const long count_moved = static_cast<long>(moved.size());
+#pragma omp parallel for num_threads(parallel_threads(count_moved)) schedule(static)
+  for (long i = 0; i < count_moved; ++i) {
+    const int f = moved[i];
     const Eigen::Vector3d normal = doubled_normal(output, triangles_, f);
     areas.area[f] = 0.5 * normal.norm();
     areas.along[f] = normal.dot(label_axis(labels_[f]));

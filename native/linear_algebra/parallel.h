@@ -8,6 +8,8 @@
 // s with one).
 #pragma once
 
+#include <algorithm>
+
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -21,6 +23,18 @@ inline int parallel_threads(long work) {
   return work < kParallelThreshold ? 1 : omp_get_max_threads();
 #else
   (void)work;
+  return 1;
+#endif
+}
+
+// How many threads share `tasks` independent tasks of milliseconds each (a
+// factorisation each): at that grain a descheduled worker costs less than
+// the tasks, so no threshold; at most one thread a task.
+inline int task_threads(int tasks) {
+#ifdef _OPENMP
+  return tasks < 1 ? 1 : std::min(tasks, omp_get_max_threads());
+#else
+  (void)tasks;
   return 1;
 #endif
 }

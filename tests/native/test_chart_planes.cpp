@@ -7,6 +7,10 @@
 #include <memory>
 #include <set>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #include "deform/chart_planes.h"
 #include "deform/deform.h"
 #include "deform/flatten_charts.h"
@@ -131,6 +135,33 @@ TEST(ChartPlanes, SameChartsShareTheirFactorsAndOrderings) {
   EXPECT_EQ(again.factorizations(), 4);
   EXPECT_EQ(again.solve(L * s.x), expected);
 }
+
+#ifdef _OPENMP
+// Each axis is factorised and solved on a thread of its own
+// (chart_planes.cpp): the same solution bit for bit as on one thread, after
+// collapses too (two axes refactorised at once).
+TEST(ChartPlanes, AxesOnTheirOwnThreadsSolveAsOnOne) {
+  const Block s = noisy_l_block(0.05);
+  const Eigen::SparseMatrix<double> L = shifted_laplacian(s);
+  auto solve_with = [&](int threads) {
+    const int before = omp_get_max_threads();
+    omp_set_num_threads(threads);
+    ChartPlanes planes(static_cast<int>(s.x.rows()), s.triangles, s.labels);
+    planes.factorize(L);
+    std::array<Vertices, 2> x = planes.solve(L * s.x, s.x);
+    planes.collapse(0, (s.labels[0] / 2 + 1) % 3);
+    planes.collapse(1, (s.labels[1] / 2 + 2) % 3);
+    planes.factorize(L);
+    x[1] = planes.solve(L * s.x);
+    omp_set_num_threads(before);
+    return x;
+  };
+  const std::array<Vertices, 2> one = solve_with(1), two = solve_with(2);
+  EXPECT_EQ(one[0], two[0]);
+  EXPECT_EQ(one[1], two[1]);
+  EXPECT_LT(worst_normal_error(two[0], s), 1e-9);
+}
+#endif
 
 // Planes built again on the same charts and collapses (the polish of a
 // finished run, polish_stage.h) take that run's factors of the axes whose

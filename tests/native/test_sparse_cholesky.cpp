@@ -6,6 +6,12 @@
 #include <cmath>
 #include <cstdlib>
 #include <string>
+#include <thread>
+#include <vector>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #include "linear_algebra/laplacian.h"
 #include "linear_algebra/sparse_cholesky.h"
@@ -73,6 +79,37 @@ TEST(SparseCholesky, CholmodsFactorisationWakesNoThreads) {
   const Eigen::MatrixX3d x = cholesky.solve(b);
   EXPECT_LT(voluntary_context_switches() - before, 30);
   EXPECT_TRUE(x.allFinite());
+}
+#endif
+
+#ifdef _OPENMP
+// The flat charts' three systems are factorised on threads of their own at
+// once (chart_planes.cpp): each factor the same bit for bit as alone, and
+// the plugin's switch of OpenMP's nesting (supernodal_cholmod.cpp), a
+// setting of each thread's own, back as it was.
+TEST(SparseCholesky, CholmodFactorisesOnSeveralThreadsAtOnce) {
+  const SparseMatrix a = shifted_laplacian(test_meshes::uv_sphere(400, 150));
+  const Eigen::MatrixX3d b = Eigen::MatrixX3d::Random(a.rows(), 3);
+  SparseCholesky alone;
+  alone.analyze(a);
+  alone.factorize(a);
+  ASSERT_STREQ(alone.backend(), "cholmod-supernodal");
+  const Eigen::MatrixX3d expected = alone.solve(b);
+  const int levels = omp_get_max_active_levels();
+  std::vector<Eigen::MatrixX3d> solutions(2);
+  std::vector<std::thread> threads;
+  for (Eigen::MatrixX3d& solution : solutions)
+    threads.emplace_back([&] {
+      SparseCholesky cholesky;
+      cholesky.analyze(a);
+      for (int i = 0; i < 4; ++i) {
+        cholesky.factorize(a);
+        solution = cholesky.solve(b);
+      }
+    });
+  for (std::thread& thread : threads) thread.join();
+  for (const Eigen::MatrixX3d& solution : solutions) EXPECT_EQ(solution, expected);
+  EXPECT_EQ(omp_get_max_active_levels(), levels);
 }
 #endif
 
