@@ -11,6 +11,7 @@
 #include "deform/chart_planes.h"
 #include "deform/robust_run.h"
 #include "labels/axis.h"
+#include "linear_algebra/parallel.h"
 #include "mesh/triangle_incidence.h"
 
 namespace polycube {
@@ -100,7 +101,22 @@ Vertices controlled_blend(const Deformation& d, const ChartPlanes& planes, const
   // The triangles blocking, and those pointing against their axis; a
   // triangle measured again this round is flagged in `seen`.
   std::vector<int> blocking, against, still, moved, moved_vertices, list;
-  std::vector<char> seen(count, 0), vertex_moved(d.n, 0);
+  std::vector<char> seen(count, 0), vertex_moved(d.n, 0);  // per vertex, a bit per axis it moved in
+  // Per triangle, a bit per axis in which its corners stand at one value and
+  // step by one amount (a chart's plane, inside the chart): whatever their
+  // share, that coordinate's differences stay exactly zero, so moving it
+  // changes neither the area nor the orientation. A halved plane moves
+  // every vertex of its chart, but only the triangles across the chart's
+  // edge change.
+  std::vector<char> rigid(count, 0);
+#pragma omp parallel for num_threads(parallel_threads(count)) schedule(static)
+  for (Eigen::Index t = 0; t < count; ++t)
+    for (int axis = 0; axis < 3; ++axis) {
+      const int a = triangles(t, 0), b = triangles(t, 1), c = triangles(t, 2);
+      if (d.x(a, axis) == d.x(b, axis) && d.x(a, axis) == d.x(c, axis) && step(a, axis) == step(b, axis) &&
+          step(a, axis) == step(c, axis))
+        rigid[t] |= static_cast<char>(1 << axis);
+    }
   for (Eigen::Index t = 0; t < count; ++t) {
     if (measured.along[t] < 0.0) against.push_back(static_cast<int>(t));
     if (blocks(t)) blocking.push_back(static_cast<int>(t));
@@ -130,16 +146,18 @@ Vertices controlled_blend(const Deformation& d, const ChartPlanes& planes, const
           if (value == next(v, axis)) continue;
           next(v, axis) = value;
           if (!vertex_moved[v]) moved_vertices.push_back(v);
-          vertex_moved[v] = 1;
+          vertex_moved[v] |= static_cast<char>(1 << axis);
         }
       }
       halved[axis].clear();
     }
     moved.clear();
     for (int v : moved_vertices) {
+      const char axes = vertex_moved[v];
       vertex_moved[v] = 0;
       for (int i = index.incidence.offsets[v]; i < index.incidence.offsets[v + 1]; ++i) {
         const int t = index.incidence.triangles[i];
+        if (!(axes & ~rigid[t])) continue;
         if (!seen[t]) moved.push_back(t);
         seen[t] = 1;
       }
