@@ -3,14 +3,18 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
-#include "labels/axis.h"
 #include "deform/rodrigues.h"
+#include "labels/axis.h"
+#include "linear_algebra/parallel.h"
 
 namespace polycube {
 
 Rotations fitted_rotations(const Vertices& input, const Vertices& current, const Triangles& triangles,
                            const CotangentWeights& weights, const std::vector<int>& triangle_labels) {
   Rotations rotations(triangles.rows());
+  // A rotation costs about what four triangles' measurements do
+  // (parallel.h's unit of work).
+#pragma omp parallel for num_threads(parallel_threads(4 * triangles.rows())) schedule(static)
   for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
     const Eigen::Vector3d axis = label_axis(triangle_labels[t]);
     Eigen::Vector3d p[3], q[3];
