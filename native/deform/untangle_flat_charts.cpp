@@ -183,7 +183,8 @@ Matrix6d triangle_hessian(const Triangle& t, const Eigen::VectorXd& at, double e
 UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat, const Triangles& triangles,
                                      const std::vector<int>& triangle_labels, int max_rounds, double local_share,
                                      const CollapseBound& bound, UntangleMinimiser minimiser,
-                                     const std::function<bool()>& stop) {
+                                     const std::function<bool()>& stop,
+                                     const std::function<void()>& before_global) {
   const int n = static_cast<int>(input.rows());
   const Eigen::Index count = triangles.rows();
   UntangledCharts result;
@@ -484,6 +485,7 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
   }
   double previous = std::numeric_limits<double>::infinity();
   size_t last_no_room = 0;
+  bool global_started = false;
   // The caller's stop ends the rounds, the result refused (header).
   auto stopped = [&]() {
     result.stopped = result.stopped || (stop && stop());
@@ -496,6 +498,8 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
     const bool local = !seeds.empty();
     only_local = only_local && local;
     if (!local) {
+      if (before_global && !global_started) before_global();
+      global_started = true;
       reached = minimize_over(active, y, static_cast<int>(y.size()), global_newton);
     } else {
       ++result.local_rounds;

@@ -90,10 +90,13 @@ constexpr double kUntangleLocalShare = 0.002;
 // a line pass it. `stop`, when given, is asked before every round and every
 // Newton iteration: true stops, refused (the user's stop, answered within a
 // factorisation, where a round costs minutes at a million triangles).
+// `before_global`, when given, is called once before the first global round
+// (the caller's factors freed for Newton's, say: local rounds need little).
 UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat, const Triangles& triangles,
                                      const std::vector<int>& triangle_labels, int max_rounds = kUntangleRounds,
                                      double local_share = kUntangleLocalShare, const CollapseBound& bound = {},
                                      UntangleMinimiser minimiser = UntangleMinimiser::automatic,
-                                     const std::function<bool()>& stop = {});
+                                     const std::function<bool()>& stop = {},
+                                     const std::function<void()>& before_global = {});
 
 }  // namespace polycube

@@ -8,12 +8,17 @@ namespace polycube {
 
 UntangleStep untangle_step(RobustRun& run, const Vertices& flat, ChartPlanes& factored, const CollapseBound& bound) {
   Deformation& d = run.d;
-  if (d.triangles().rows() >= kUntangleNewtonFrom) factored.release();
   const StageTimer timer(d.result.stages.untangle, d.set_apart);
   UntangleStep opened;
+  // Newton's factorisations of the whole mesh are not held beside the
+  // planes'; local rounds alone keep them, and the same charts afterwards
+  // share those of the axes never collapsed (RobustRun::charts_like).
+  const auto release = [&] {
+    if (d.triangles().rows() >= kUntangleNewtonFrom) factored.release();
+  };
   const UntangledCharts untangled =
       untangle_flat_charts(d.mesh.vertices, flat, d.triangles(), d.triangle_labels, kUntangleRounds,
-                           kUntangleLocalShare, bound, UntangleMinimiser::automatic, d.options.stop_requested);
+                           kUntangleLocalShare, bound, UntangleMinimiser::automatic, d.options.stop_requested, release);
   opened.rounds = untangled.rounds;
   if (untangled.refused) return opened;
   opened.positions = d.place(untangled.positions);

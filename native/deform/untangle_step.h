@@ -9,10 +9,11 @@
 // fold-free, its shape not computed). Output: the opened shape, its states,
 // and whether it is fold-free: nothing turned over and no more edges folded
 // than in the input. `factored`: the flat charts whose factors the caller
-// holds; at Newton's scale they are freed first (their orderings kept), not
-// held beside Newton's factor, several times their size (bunny00 refined 4
-// times: 113 of the 415 MB of factors at the peak), and refactorised to the
-// same factors, bit for bit, if they are needed again.
+// holds; at Newton's scale they are freed before the first global round
+// (their orderings kept), not held beside Newton's factor, several times
+// their size (bunny00 refined 4 times: 113 of the 415 MB of factors at the
+// peak), and refactorised to the same factors, bit for bit, if they are
+// needed again. Local rounds alone leave them.
 #pragma once
 
 #include "deform/quality.h"

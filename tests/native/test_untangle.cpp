@@ -158,7 +158,12 @@ TEST(UntangleFlatCharts, RoundsGoLocalForAFewTrianglesWithoutRoomNotForAShareOfT
   ASSERT_NE(second, two.labels.rend());
   *second = 2;
   const UntangledCharts a = untangle_flat_charts(one.vertices, one.vertices, one.triangles, one.labels);
-  const UntangledCharts b = untangle_flat_charts(two.vertices, two.vertices, two.triangles, two.labels);
+  int before_global = 0;  // called once, before the first of several global rounds
+  const UntangledCharts b = untangle_flat_charts(two.vertices, two.vertices, two.triangles, two.labels, kUntangleRounds,
+                                                 kUntangleLocalShare, {}, UntangleMinimiser::automatic, {},
+                                                 [&] { ++before_global; });
+  EXPECT_GT(b.rounds, 1);
+  EXPECT_EQ(before_global, 1);
   EXPECT_GT(a.local_rounds, 0);
   EXPECT_EQ(a.put_on_a_line, 1);
   EXPECT_EQ(b.local_rounds, 0);
@@ -173,8 +178,11 @@ TEST(UntangleFlatCharts, RoundsGoLocalForAFewTrianglesWithoutRoomNotForAShareOfT
 // local rings cannot reach exactly where the caller put it. Returns how
 // many vertices were far.
 int expect_opened_locally(const Block& b, const Vertices& crushed, const std::function<bool(Eigen::Index)>& far) {
-  const UntangledCharts u = untangle_flat_charts(b.vertices, crushed, b.triangles, b.labels, kUntangleRounds,
-                                                 kUntangleLocalShare, {}, UntangleMinimiser::newton);
+  int before_global = 0;  // local rounds alone: the caller's factors are never freed (untangle_step.h)
+  const UntangledCharts u =
+      untangle_flat_charts(b.vertices, crushed, b.triangles, b.labels, kUntangleRounds, kUntangleLocalShare, {},
+                           UntangleMinimiser::newton, {}, [&] { ++before_global; });
+  EXPECT_EQ(before_global, 0);
   EXPECT_TRUE(u.untangled);
   EXPECT_EQ(u.put_on_a_line, 0);
   EXPECT_GT(u.rounds, 0);
