@@ -102,19 +102,20 @@ Vertices controlled_blend(const Deformation& d, const ChartPlanes& planes, const
   // triangle measured again this round is flagged in `seen`.
   std::vector<int> blocking, against, still, moved, moved_vertices, list;
   std::vector<char> seen(count, 0), vertex_moved(d.n, 0);  // per vertex, a bit per axis it moved in
-  // Per triangle, a bit per axis in which its corners stand at one value and
-  // step by one amount (a chart's plane, inside the chart): whatever their
-  // share, that coordinate's differences stay exactly zero, so moving it
-  // changes neither the area nor the orientation. A halved plane moves
-  // every vertex of its chart, but only the triangles across the chart's
-  // edge change.
+  // Per triangle, a bit per axis in which its corners share one unknown
+  // (so one share), stand at one value and step by one amount (a chart's
+  // plane, inside the chart): that coordinate's differences stay exactly
+  // zero, so moving it changes neither the area nor the orientation. A
+  // halved plane moves every vertex of its chart, but only the triangles
+  // across the chart's edge change.
   std::vector<char> rigid(count, 0);
 #pragma omp parallel for num_threads(parallel_threads(count)) schedule(static)
   for (Eigen::Index t = 0; t < count; ++t)
     for (int axis = 0; axis < 3; ++axis) {
       const int a = triangles(t, 0), b = triangles(t, 1), c = triangles(t, 2);
-      if (d.x(a, axis) == d.x(b, axis) && d.x(a, axis) == d.x(c, axis) && step(a, axis) == step(b, axis) &&
-          step(a, axis) == step(c, axis))
+      const std::vector<int>& unknown = planes.unknowns(axis);
+      if (unknown[a] == unknown[b] && unknown[a] == unknown[c] && d.x(a, axis) == d.x(b, axis) &&
+          d.x(a, axis) == d.x(c, axis) && step(a, axis) == step(b, axis) && step(a, axis) == step(c, axis))
         rigid[t] |= static_cast<char>(1 << axis);
     }
   for (Eigen::Index t = 0; t < count; ++t) {
