@@ -12,6 +12,7 @@
 #include "deform/robust_run.h"
 #include "labels/axis.h"
 #include "linear_algebra/parallel.h"
+#include "mesh/sort_by_vertex.h"
 #include "mesh/triangle_incidence.h"
 
 namespace polycube {
@@ -245,44 +246,45 @@ struct Slopes {
   std::array<double, 2> by_scale = {0.0, 0.0};
 };
 
-// With `slopes`, what smooth_gradients() needs too. `log_lengths`:
-// log_lengths_of(d.quality).
-Errors smooth_errors(const Deformation& d, const LeftOut& left_out, const std::vector<double>& log_lengths,
-                     const Vertices& x, Slopes* slopes = nullptr) {
-  const QualityMeasure& q = d.quality;
-  const auto& edges = q.edges();
-  const auto& lengths = q.input_lengths();
-  const auto& areas = q.input_areas();
+// The triangles' areas signed along their axes, and their sum.
+double axis_areas(const Deformation& d, const Vertices& x, std::vector<double>& area) {
   const Triangles& triangles = d.triangles();
-  const Eigen::Index count = triangles.rows();
-  std::vector<double> area(count);
-  double total = 0.0, figure_total = 0.0;
-  for (Eigen::Index t = 0; t < count; ++t) {
+  area.resize(triangles.rows());
+  double total = 0.0;
+  for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
     const Eigen::Vector3d pa = x.row(triangles(t, 0)), pb = x.row(triangles(t, 1)), pc = x.row(triangles(t, 2));
     const Eigen::Vector3d normal = (pb - pa).cross(pc - pa);
     area[t] = 0.5 * normal.dot(label_axis(d.triangle_labels[t]));
     total += area[t];
-    figure_total += 0.5 * normal.norm();
   }
+  return total;
+}
+
+// With `slopes`, what smooth_gradients() needs too. `log_lengths`:
+// log_lengths_of(d.quality). With `beat`, errors that cannot be better than
+// it (Errors::better_than) are not finished: their edge error alone already
+// exceeds it (half of B0's trials are not taken). The figures' errors are
+// left out: figure_errors() adds them to the errors of a step taken.
+Errors smooth_errors(const Deformation& d, const LeftOut& left_out, const std::vector<double>& log_lengths,
+                     const Vertices& x, Slopes* slopes = nullptr, const Errors* beat = nullptr) {
+  const QualityMeasure& q = d.quality;
+  const auto& edges = q.edges();
+  const auto& areas = q.input_areas();
+  const Eigen::Index count = d.triangles().rows();
+  std::vector<double> area;
+  const double total = axis_areas(d, x, area);
   const double input_total = q.input_total_area();
   if (!(total > 0.0) || !(input_total > 0.0)) return {};
   const double s2 = total / input_total, log_scale = 0.5 * std::log(s2);
-  const double figure_s2 = figure_total / input_total, figure_scale = std::sqrt(figure_s2);
-  double figure_edge = 0.0, figure_area = 0.0;
-  long measured_edges = 0, measured_triangles = 0;
   const double edge_count = static_cast<double>(edges.size()), triangle_count = static_cast<double>(count);
   Errors errors{0.0, 0.0};
   // Each error's derivative by s^2, which moves with every triangle's area.
   std::array<double, 2> by_scale = {0.0, 0.0};
   if (slopes) slopes->edge.assign(edges.size(), std::numeric_limits<double>::quiet_NaN());
   for (size_t e = 0; e < edges.size(); ++e) {
-    if (lengths[e] <= 0.0) continue;
+    if (left_out.edges[e] || q.input_lengths()[e] <= 0.0) continue;
     const auto [i, j] = edges[e];
-    const Eigen::RowVector3d v = x.row(i) - x.row(j);
-    const double length2 = v.squaredNorm();
-    figure_edge += std::abs(std::sqrt(length2) / (figure_scale * lengths[e]) - 1.0);
-    ++measured_edges;
-    if (left_out.edges[e]) continue;
+    const double length2 = (x.row(i) - x.row(j)).squaredNorm();
     if (!(length2 > 0.0)) return {};
     const double u = 0.5 * std::log(length2) - log_scale - log_lengths[e];
     const double rho_u = rho(u), slope = u / rho_u;  // rho(u) and its slope
@@ -290,12 +292,11 @@ Errors smooth_errors(const Deformation& d, const LeftOut& left_out, const std::v
     by_scale[0] -= slope / (2.0 * s2 * edge_count);
     if (slopes) slopes->edge[e] = slope / (length2 * edge_count);
   }
+  errors.edge /= edge_count;
+  if (beat && errors.edge > beat->edge) return {};
   std::vector<double> by_area(count, 0.0);  // the area error's derivative by A at fixed s^2
   for (Eigen::Index t = 0; t < count; ++t) {
-    if (areas[t] <= 0.0) continue;
-    figure_area += std::abs(std::abs(area[t]) / (figure_s2 * areas[t]) - 1.0);
-    ++measured_triangles;
-    if (left_out.triangles[t]) continue;
+    if (left_out.triangles[t] || areas[t] <= 0.0) continue;
     if (!(area[t] > 0.0)) return {};
     const double r = std::log(area[t] / (s2 * areas[t]));
     const double rho_r = rho(r), slope = r / rho_r;  // rho(r) and its slope
@@ -303,15 +304,45 @@ Errors smooth_errors(const Deformation& d, const LeftOut& left_out, const std::v
     by_scale[1] -= slope / (s2 * triangle_count);
     by_area[t] = slope / (area[t] * triangle_count);
   }
-  errors.edge /= edge_count;
   errors.area /= triangle_count;
-  errors.figure_edge = measured_edges > 0 ? figure_edge / measured_edges : 0.0;
-  errors.figure_area = measured_triangles > 0 ? figure_area / measured_triangles : 0.0;
   if (slopes) {
     slopes->by_area = std::move(by_area);
     slopes->by_scale = by_scale;
   }
   return errors;
+}
+
+// The figures' own edge and area errors (quality.h) at `x`, into `errors`.
+void figure_errors(const Deformation& d, const Vertices& x, Errors& errors) {
+  const QualityMeasure& q = d.quality;
+  const auto& edges = q.edges();
+  const auto& lengths = q.input_lengths();
+  const auto& areas = q.input_areas();
+  const Triangles& triangles = d.triangles();
+  std::vector<double> area(triangles.rows());
+  double figure_total = 0.0;
+  for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
+    const Eigen::Vector3d pa = x.row(triangles(t, 0)), pb = x.row(triangles(t, 1)), pc = x.row(triangles(t, 2));
+    const Eigen::Vector3d normal = (pb - pa).cross(pc - pa);
+    area[t] = 0.5 * normal.dot(label_axis(d.triangle_labels[t]));
+    figure_total += 0.5 * normal.norm();
+  }
+  const double figure_s2 = figure_total / q.input_total_area(), figure_scale = std::sqrt(figure_s2);
+  double figure_edge = 0.0, figure_area = 0.0;
+  long measured_edges = 0, measured_triangles = 0;
+  for (size_t e = 0; e < edges.size(); ++e) {
+    if (lengths[e] <= 0.0) continue;
+    const auto [i, j] = edges[e];
+    figure_edge += std::abs((x.row(i) - x.row(j)).norm() / (figure_scale * lengths[e]) - 1.0);
+    ++measured_edges;
+  }
+  for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
+    if (areas[t] <= 0.0) continue;
+    figure_area += std::abs(std::abs(area[t]) / (figure_s2 * areas[t]) - 1.0);
+    ++measured_triangles;
+  }
+  errors.figure_edge = measured_edges > 0 ? figure_edge / measured_edges : 0.0;
+  errors.figure_area = measured_triangles > 0 ? figure_area / measured_triangles : 0.0;
 }
 
 // Each smooth error's gradient by position at `x`, from the `slopes` of
@@ -359,7 +390,7 @@ std::vector<char> open_boundary_vertices(int n, const Triangles& triangles) {
       const int a = triangles(t, k), b = triangles(t, (k + 1) % 3);
       edges.emplace_back(std::min(a, b), std::max(a, b));
     }
-  std::sort(edges.begin(), edges.end());
+  sort_by_vertex(edges, n);
   std::vector<char> boundary(n, 0);
   for (size_t i = 0; i < edges.size();) {
     size_t j = i;
@@ -460,10 +491,12 @@ int polish_stage(RobustRun& run, std::unique_ptr<ChartPlanes> factored) {
   std::vector<char> unused_collapsed, unused_flipped;
   // Steps follow the smooth errors; what is returned is the state, after
   // any step, with the lowest figures of those in which neither grew.
-  Errors errors = smooth_errors(d, left_out, log_lengths, d.x, &slopes), best = errors;
+  Errors errors = smooth_errors(d, left_out, log_lengths, d.x, &slopes);
   // No smooth errors to lower (no area along the axes at all, or an edge the
   // run squeezed to nothing besides its collapsed ones): nothing to polish.
   if (!std::isfinite(errors.edge + errors.area)) return 0;
+  figure_errors(d, d.x, errors);
+  Errors best = errors;
   smooth_gradients(d, d.x, slopes, gradients);
   const Vertices start_x = d.x;
   Vertices best_x = d.x;
@@ -486,11 +519,12 @@ int polish_stage(RobustRun& run, std::unique_ptr<ChartPlanes> factored) {
     for (int halving = 0; halving <= 2 * kMaxHalvings; ++halving) {
       Vertices next =
           controlled_blend(d, planes, index, d.x + step_length * direction, collapsed, bounds, held, areas_now);
-      const Errors next_errors = smooth_errors(d, left_out, log_lengths, next, &slopes);
+      Errors next_errors = smooth_errors(d, left_out, log_lengths, next, &slopes, &errors);
       if (!next_errors.better_than(errors)) {
         step_length *= 0.5;
         continue;
       }
+      figure_errors(d, next, next_errors);
       smooth_gradients(d, next, slopes, gradients);
       // Placing moves each component as a whole: the errors and their gradients stay.
       d.x = place_components(next, next, d.parts, d.centroids);

@@ -7,6 +7,7 @@
 
 #include "labels/axis.h"
 #include "linear_algebra/parallel.h"
+#include "mesh/sort_by_vertex.h"
 
 namespace polycube {
 namespace {
@@ -35,7 +36,7 @@ QualityMeasure::QualityMeasure(const Vertices& input, const Triangles& triangles
       const int a = triangles(f, k), b = triangles(f, (k + 1) % 3);
       if (a != b) sides.emplace_back(std::min(a, b), std::max(a, b), static_cast<int>(f));
     }
-  std::sort(sides.begin(), sides.end());
+  sort_by_vertex(sides, static_cast<int>(input.rows()));
   for (size_t i = 0; i < sides.size();) {
     size_t j = i;
     while (j < sides.size() && std::get<0>(sides[j]) == std::get<0>(sides[i]) &&

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <tuple>
 
+#include "mesh/sort_by_vertex.h"
+
 namespace polycube {
 
 MeshAdjacency mesh_adjacency(const PolygonFaces& faces, int vertex_count) {
@@ -19,7 +21,7 @@ MeshAdjacency mesh_adjacency(const PolygonFaces& faces, int vertex_count) {
       sides.emplace_back(std::min(a, b), std::max(a, b), f, a < b ? 1 : 0);
     }
   }
-  std::sort(sides.begin(), sides.end());
+  sort_by_vertex(sides, vertex_count);
   for (size_t k = 0; k < sides.size(); ++k) {
     const auto& [low, high, face, forward] = sides[k];
     if (k == 0 || std::get<0>(sides[k - 1]) != low || std::get<1>(sides[k - 1]) != high) {
