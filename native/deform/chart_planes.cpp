@@ -1,11 +1,10 @@
 #include "deform/chart_planes.h"
 
 #include <algorithm>
-#include <exception>
 #include <type_traits>
 #include <utility>
 
-#include "linear_algebra/parallel.h"
+#include "linear_algebra/run_tasks.h"
 #include "linear_algebra/sparse_cholesky.h"
 
 namespace polycube {
@@ -181,18 +180,7 @@ void ChartPlanes::factorize(const Eigen::SparseMatrix<double>& laplacian) {
   // thread of its own, the largest first (on two cores the other two follow
   // it on the second).
   std::stable_sort(axes.begin(), axes.end(), [&](int a, int b) { return unknowns[a] > unknowns[b]; });
-  const int count = static_cast<int>(axes.size());
-  std::array<std::exception_ptr, 3> failures;
-#pragma omp parallel for num_threads(task_threads(count)) schedule(dynamic, 1)
-  for (int i = 0; i < count; ++i) {
-    try {
-      factorize_axis(laplacian, axes[i], unknowns[axes[i]]);
-    } catch (...) {
-      failures[i] = std::current_exception();
-    }
-  }
-  for (const std::exception_ptr& failure : failures)
-    if (failure) std::rethrow_exception(failure);
+  run_tasks(static_cast<int>(axes.size()), [&](int i) { factorize_axis(laplacian, axes[i], unknowns[axes[i]]); });
 }
 
 void ChartPlanes::factorize_axis(const Eigen::SparseMatrix<double>& laplacian, int axis, int m) {
@@ -225,8 +213,7 @@ std::array<Vertices, K> ChartPlanes::solve_together(const std::array<const Eigen
   std::array<Vertices, K> x;
   for (Vertices& solution : x) solution.resize(n, 3);
   // Independent back-substitutions, each axis's on a thread of its own.
-#pragma omp parallel for num_threads(task_threads(3)) schedule(dynamic, 1)
-  for (int axis = 0; axis < 3; ++axis) {
+  run_tasks(3, [&](int axis) {
     const std::vector<int>& unknown = unknown_[axis];
     Columns b = Columns::Zero(cholesky_[axis]->rows(), K);
     for (Eigen::Index v = 0; v < n; ++v)
@@ -234,7 +221,7 @@ std::array<Vertices, K> ChartPlanes::solve_together(const std::array<const Eigen
     const Columns y = cholesky_[axis]->solve(b);
     for (Eigen::Index v = 0; v < n; ++v)
       for (int k = 0; k < K; ++k) x[k](v, axis) = y(unknown[v], k);
-  }
+  });
   return x;
 }
 

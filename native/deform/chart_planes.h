@@ -31,7 +31,8 @@ namespace polycube {
 
 class ChartPlanes {
  public:
-  // Labels per triangle, 0..5.
+  // Labels per triangle, 0..5. The planes refer to `triangles`, which must
+  // outlive them.
   ChartPlanes(int vertex_count, const Triangles& triangles, const std::vector<int>& triangle_labels);
 
   // Makes the corners of triangle t share coordinate `axis` as well.
@@ -101,7 +102,7 @@ class ChartPlanes {
   template <int K>
   std::array<Vertices, K> solve_together(const std::array<const Eigen::MatrixX3d*, K>& rhs) const;
 
-  Triangles triangles_;
+  const Triangles& triangles_;
   mutable std::array<UnionFind, 3> sets_;    // per axis: vertices sharing that coordinate
   std::array<std::vector<int>, 3> unknown_;  // per axis and vertex: its unknown
   std::array<std::shared_ptr<const SparseCholesky>, 3> cholesky_;

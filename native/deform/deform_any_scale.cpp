@@ -386,6 +386,7 @@ void polish(const PolygonMesh& mesh, const std::vector<int>& labels, const Defor
     run = std::make_unique<RobustRun>(*own);
   }
   Deformation& d = run->d;
+  d.weights = CotangentWeights();  // assembled into the Laplacian already; the polish's peak is the run's
   int steps = 0;
   // A polish that breaks down (a flat-chart system that cannot be
   // factorised, a solve that is not finite) costs the caller nothing: the

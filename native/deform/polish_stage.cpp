@@ -12,6 +12,7 @@
 #include "deform/robust_run.h"
 #include "labels/axis.h"
 #include "linear_algebra/parallel.h"
+#include "linear_algebra/run_tasks.h"
 #include "mesh/sort_by_vertex.h"
 #include "mesh/triangle_incidence.h"
 
@@ -65,11 +66,13 @@ struct BlendIndex {
 // round put it, with the same flags (the same result bit for bit as a
 // measure of the whole mesh every round).
 Vertices controlled_blend(const Deformation& d, const ChartPlanes& planes, const BlendIndex& index,
-                          const Vertices& target, const std::vector<char>& collapsed_before, const AreaBounds& bounds,
+                          Vertices target, const std::vector<char>& collapsed_before, const AreaBounds& bounds,
                           const std::vector<char>& held, const std::vector<double>& areas_now) {
   const Triangles& triangles = d.triangles();
   const Eigen::Index count = triangles.rows();
-  const Vertices step = target - d.x;
+  // In the target's memory: a vertex's worth less at the polish's peak.
+  Vertices& step = target;
+  step -= d.x;
   std::array<std::vector<double>, 3> share;
   std::array<std::vector<int>, 3> halvings;
   std::array<std::vector<char>, 3> marked;
@@ -345,6 +348,18 @@ void figure_errors(const Deformation& d, const Vertices& x, Errors& errors) {
   errors.figure_area = measured_triangles > 0 ? figure_area / measured_triangles : 0.0;
 }
 
+// A step tried: the blend and its smooth errors (and what their gradients need).
+struct Trial {
+  Vertices next;
+  Errors errors;
+  Slopes slopes;
+};
+
+// Trials go in pairs (polish_stage) from this many triangles, below which
+// one costs about what waking a thread for it does, up to where a trial's
+// own loops take both cores (parallel.h).
+constexpr Eigen::Index kPairedTrialsFrom = 5'000;
+
 // Each smooth error's gradient by position at `x`, from the `slopes` of
 // smooth_errors() at the same `x`.
 void smooth_gradients(const Deformation& d, const Vertices& x, const Slopes& slopes,
@@ -498,9 +513,12 @@ int polish_stage(RobustRun& run, std::unique_ptr<ChartPlanes> factored) {
   figure_errors(d, d.x, errors);
   Errors best = errors;
   smooth_gradients(d, d.x, slopes, gradients);
+  slopes = Slopes();  // each trial has its own (Trial)
   const Vertices start_x = d.x;
   Vertices best_x = d.x;
   int steps = 0, best_steps = 0;
+  const Eigen::Index count = d.triangles().rows();
+  const bool paired_trials = count >= kPairedTrialsFrom && parallel_threads(count) == 1 && task_threads(2) > 1;
   for (; steps < kPolishRounds; ++steps) {
     // A step costs a second at a million triangles; a stop keeps the best so far.
     if (d.options.stop_requested && d.options.stop_requested()) break;
@@ -515,20 +533,38 @@ int polish_stage(RobustRun& run, std::unique_ptr<ChartPlanes> factored) {
     // The longest step, halving from twice the last one kept, along which
     // neither smooth error grows.
     if (steps > 0) d.quality.fold_flags(d.x, unused_collapsed, unused_flipped, &areas_now);
-    bool moved = false;
+    auto trial = [&](double length) {
+      Trial t;
+      t.next = controlled_blend(d, planes, index, d.x + length * direction, collapsed, bounds, held, areas_now);
+      t.errors = smooth_errors(d, left_out, log_lengths, t.next, &t.slopes, &errors);
+      return t;
+    };
+    // With a second core, a trial of the full length has the next halving's
+    // tried beside it: the same trials in the same order, but one that fails
+    // costs no time (every round of B0's polish failed at twice the last
+    // step, then took the last step).
+    std::array<Trial, 2> pair;
+    bool moved = false, paired = false;
     for (int halving = 0; halving <= 2 * kMaxHalvings; ++halving) {
-      Vertices next =
-          controlled_blend(d, planes, index, d.x + step_length * direction, collapsed, bounds, held, areas_now);
-      Errors next_errors = smooth_errors(d, left_out, log_lengths, next, &slopes, &errors);
-      if (!next_errors.better_than(errors)) {
+      if (paired) {
+        paired = false;
+        pair[0] = std::move(pair[1]);
+      } else if (paired_trials && halving < 2 * kMaxHalvings) {
+        paired = true;
+        run_tasks(2, [&](int i) { pair[i] = trial(i == 0 ? step_length : 0.5 * step_length); });
+      } else {
+        pair[0] = trial(step_length);
+      }
+      Trial& t = pair[0];
+      if (!t.errors.better_than(errors)) {
         step_length *= 0.5;
         continue;
       }
-      figure_errors(d, next, next_errors);
-      smooth_gradients(d, next, slopes, gradients);
+      figure_errors(d, t.next, t.errors);
+      smooth_gradients(d, t.next, t.slopes, gradients);
       // Placing moves each component as a whole: the errors and their gradients stay.
-      d.x = place_components(next, next, d.parts, d.centroids);
-      errors = next_errors;
+      d.x = place_components(t.next, t.next, d.parts, d.centroids);
+      errors = t.errors;
       moved = true;
       break;
     }

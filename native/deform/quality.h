@@ -72,6 +72,8 @@ struct TriangleAreas {
 
 // Keeps what does not change between iterations (input areas, the edge list
 // and input lengths) so each measurement costs one pass over the mesh.
+// It refers to `triangles`, which must outlive it (a Deformation's: a copy
+// was a vertex's worth of memory at B0's peak).
 class QualityMeasure {
  public:
   QualityMeasure(const Vertices& input, const Triangles& triangles, std::vector<int> triangle_labels);
@@ -134,7 +136,7 @@ class QualityMeasure {
   void set_labels(std::vector<int> triangle_labels) { labels_ = std::move(triangle_labels); }
 
  private:
-  Triangles triangles_;
+  const Triangles& triangles_;
   std::vector<int> labels_;
   std::vector<double> input_area_;
   double input_total_ = 0.0;
