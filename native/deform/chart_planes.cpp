@@ -163,6 +163,23 @@ SparseCholesky::Ordering joined_ordering(const SparseCholesky::Ordering& ordered
 
 }  // namespace
 
+void ChartPlanes::order(const Eigen::SparseMatrix<double>& laplacian) {
+  const int n = static_cast<int>(laplacian.rows());
+  std::vector<int> of_root, unknown;
+  for (int axis = 0; axis < 3; ++axis) {
+    if (chart_orderings_[axis] || !charts_only_[axis]) continue;
+    const int m = number_unknowns(axis, n, of_root, unknown);
+    SparseCholesky analysis;
+    analysis.analyze(reduced_matrix(laplacian, unknown, m));
+    chart_orderings_[axis] = std::make_shared<const ChartOrdering>(ChartOrdering{analysis.ordering(), unknown});
+  }
+}
+
+void ChartPlanes::use_orderings(const ChartPlanes& ordered) {
+  for (int axis = 0; axis < 3; ++axis)
+    if (!chart_orderings_[axis]) chart_orderings_[axis] = ordered.chart_orderings_[axis];
+}
+
 void ChartPlanes::factorize(const Eigen::SparseMatrix<double>& laplacian) {
   const int n = static_cast<int>(laplacian.rows());
   std::vector<int> of_root, axes;

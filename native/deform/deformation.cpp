@@ -41,11 +41,12 @@ Deformation::Deformation(const PolygonMesh& mesh, const std::vector<int>& labels
       triangulation(triangulate(mesh.vertices, mesh.faces)),
       triangle_labels(spread(filled_labels, triangulation)),
       n(static_cast<int>(mesh.vertices.rows())),
+      laplacian(n, triangulation.triangles),
+      analysis(options.start.size() == 0 ? std::async(std::launch::async, [this] { analyze(); }) : std::future<void>()),
       parts(components(n, triangulation.triangles)),
       centroids(component_centroids(mesh.vertices, parts)),
       quality(mesh.vertices, triangulation.triangles, triangle_labels),
-      x(mesh.vertices),
-      laplacian(n, triangulation.triangles) {
+      x(mesh.vertices) {
   result.labels = filled_labels;
   result.unlabelled_faces = static_cast<int>(std::count(labels.begin(), labels.end(), kUnlabelled));
   result.triangles = static_cast<int>(triangles().rows());
@@ -66,10 +67,14 @@ Deformation::Deformation(const PolygonMesh& mesh, const std::vector<int>& labels
   // A robust run from a start that is already a polycube (the polish's,
   // polish_stage.h) never solves with the input's Laplacian: its ordering
   // would be computed for nothing.
-  if (!(options.variant == Variant::kRobust && result.converged))
-    factorization.analyze(laplacian.matrix(), options.variant == Variant::kCurrent);
+  if (analysis.valid())
+    analysis.get();
+  else if (!(options.variant == Variant::kRobust && result.converged))
+    analyze();
   stage = &result.stages.continuous;
 }
+
+void Deformation::analyze() { factorization.analyze(laplacian.matrix(), options.variant == Variant::kCurrent); }
 
 Vertices Deformation::place(const Eigen::MatrixX3d& solution) const {
   if (!solution.allFinite())

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <chrono>
+#include <future>
 #include <vector>
 
 #include "deform/deform.h"
@@ -89,13 +90,16 @@ struct Deformation {
   Triangulation triangulation;
   std::vector<int> triangle_labels;   // result.labels per triangle
   int n = 0;                          // vertices
+  Laplacian laplacian;                // of `weights`, with `shift` on the diagonal once assembled
+  SparseCholesky factorization;       // of the input's Laplacian (analysed here)
+  // Without a start, the analysis of the Laplacian's pattern runs on a
+  // thread of its own while the members below are built (B0: 5 ms each).
+  std::future<void> analysis;
   Components parts;
   Eigen::MatrixX3d centroids;         // of the input's components
   QualityMeasure quality;
   Vertices x;                         // the current positions
 
-  Laplacian laplacian;                // of `weights`, with `shift` on the diagonal once assembled
-  SparseCholesky factorization;       // of the input's Laplacian (analysed here)
   bool factorization_released = false;
   CotangentWeights weights;
   double shift = 0.0;
@@ -132,6 +136,8 @@ struct Deformation {
   // same factor.
   void release_factorization();
   void restore_factorization();
+  // The analysis of the input Laplacian's pattern, for the variant.
+  void analyze();
 
   // New labels per polygon face: result.labels, triangle_labels and the
   // measurement's labels.

@@ -44,14 +44,18 @@ struct FlatCharts {
 // Puts a solve back where the mesh stands (Deformation::place: component centroids).
 using Placement = std::function<Vertices(const Eigen::MatrixX3d& solution)>;
 
+constexpr int kFlattenRounds = 30;
+
 // From `current`, with per-triangle labels 0..5 and the (shifted) Laplacian
 // `laplacian` of `weights` (deformation.h). Gives up once more than
 // `max_collapsed` of the input's area is collapsed; tries at most
-// `max_rounds` solves.
+// `max_rounds` solves. With `ordered` (ChartPlanes::order, of the same
+// labels and Laplacian), its orderings spare the first solve's.
 FlatCharts flatten_charts(const Vertices& input, const Vertices& current, const Triangles& triangles,
                           const std::vector<int>& triangle_labels, const CotangentWeights& weights,
                           const Eigen::SparseMatrix<double>& laplacian, double shift, const QualityMeasure& quality,
-                          const Placement& place, double max_collapsed, int max_rounds = 30);
+                          const Placement& place, double max_collapsed, int max_rounds = kFlattenRounds,
+                          const ChartPlanes* ordered = nullptr);
 
 // One as-rigid-as-possible step inside the flat charts of `planes`: every
 // triangle's input shape fitted onto its axis (fitted_rotations.h), solved

@@ -18,7 +18,9 @@ void flatten_stage(RobustRun& run, int iteration) {
   d.release_factorization();  // restored below unless the charts end flat
   const Placement place = [&d](const Eigen::MatrixX3d& solution) { return d.place(solution); };
   FlatCharts flat = flatten_charts(d.mesh.vertices, d.x, d.triangles(), d.triangle_labels, d.weights,
-                                   d.laplacian.matrix(), d.shift, d.quality, place, d.options.max_collapsed_share);
+                                   d.laplacian.matrix(), d.shift, d.quality, place, d.options.max_collapsed_share,
+                                   kFlattenRounds, run.ordered.get());
+  run.ordered.reset();  // its orderings are the attempt's planes' now
   result.seconds.factorize += d.phase.lap();  // nearly all of it
   result.factorizations += flat.planes->factorizations();
   result.back_substitutions += flat.planes->solves();

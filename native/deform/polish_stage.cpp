@@ -560,8 +560,13 @@ int polish_stage(RobustRun& run, std::unique_ptr<ChartPlanes> factored) {
         step_length *= 0.5;
         continue;
       }
-      figure_errors(d, t.next, t.errors);
-      smooth_gradients(d, t.next, t.slopes, gradients);
+      // Independent: the figures on one thread, the gradients on another.
+      run_tasks(2, [&](int i) {
+        if (i == 0)
+          figure_errors(d, t.next, t.errors);
+        else
+          smooth_gradients(d, t.next, t.slopes, gradients);
+      });
       // Placing moves each component as a whole: the errors and their gradients stay.
       d.x = place_components(t.next, t.next, d.parts, d.centroids);
       errors = t.errors;

@@ -4,6 +4,7 @@
 #include "deform/flatten_stage.h"
 #include "deform/relabel_stalled_faces.h"
 #include "deform/relax_stage.h"
+#include "linear_algebra/run_tasks.h"
 #include "mesh/mesh_adjacency.h"
 
 namespace polycube {
@@ -33,7 +34,17 @@ RobustRun::RobustRun(Deformation& deformation) : d(deformation) {
   d.weights = cotangent_weights(d.mesh.vertices, d.triangles()).cwiseMax(0.0);
   d.shift = d.laplacian.assemble(d.weights, kRelativeShift);
   result.seconds.assemble += d.phase.lap();
-  if (!result.converged) d.factorization.factorize(d.laplacian.matrix());
+  if (!result.converged) {
+    // The flat charts' orderings on a second thread meanwhile: their
+    // analyses only need the Laplacian's pattern and the labels.
+    ordered = std::make_unique<ChartPlanes>(d.n, d.triangles(), d.triangle_labels);
+    run_tasks(2, [&](int i) {
+      if (i == 0)
+        d.factorization.factorize(d.laplacian.matrix());
+      else
+        ordered->order(d.laplacian.matrix());
+    });
+  }
   result.seconds.factorize += d.phase.lap();
   state = d.quality.face_states(d.x);
   diagonal = (d.mesh.vertices.colwise().maxCoeff() - d.mesh.vertices.colwise().minCoeff()).norm();

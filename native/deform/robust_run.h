@@ -52,6 +52,9 @@ struct RobustRun {
   std::optional<TriangleIncidence> step_incidence;
   // Once flat (flatten_stage): the charts and collapses, factorised.
   std::unique_ptr<ChartPlanes> planes;
+  // The start labels' charts, ordered (ChartPlanes::order) beside the
+  // input's factorisation, for the first flattening attempt.
+  std::unique_ptr<ChartPlanes> ordered;
   bool relaxed = false, uncollapsed = false, untangle_tried = false;
   int flatten_attempts = 0, last_attempt = 0;
 
