@@ -7,6 +7,7 @@
 
 #include "labels/axis.h"
 #include "linear_algebra/parallel.h"
+#include "linear_algebra/run_tasks.h"
 #include "mesh/sort_by_vertex.h"
 
 namespace polycube {
@@ -17,6 +18,14 @@ constexpr double kDegreesPerRadian = 180.0 / M_PI;
 Eigen::Vector3d doubled_normal(const Vertices& v, const Triangles& t, Eigen::Index f) {
   const Eigen::Vector3d a = v.row(t(f, 0)), b = v.row(t(f, 1)), c = v.row(t(f, 2));
   return (b - a).cross(c - a);
+}
+
+// The triangles' areas summed in order on one thread, however many
+// measured them: the same scale on any number of cores.
+double total_area(const std::vector<double>& area) {
+  double total = 0.0;
+  for (double a : area) total += a;
+  return total;
 }
 
 }  // namespace
@@ -71,24 +80,23 @@ int QualityMeasure::folded_edges(const Vertices& output, const std::vector<char>
 
 FaceStates QualityMeasure::face_states(const Vertices& output) const {
   const Eigen::Index count = triangles_.rows();
-  const int threads = parallel_threads(count);
+  const int parts = loop_parts(count);
   FaceStates s;
   s.area.resize(count);
   s.deviation_deg.assign(count, 0.0);
   s.collapsed.assign(count, 0);
   s.flipped.assign(count, 0);
-  double total = 0.0;
-#pragma omp parallel for num_threads(threads) reduction(+ : total)
-  for (Eigen::Index f = 0; f < count; ++f) {
-    s.area[f] = 0.5 * doubled_normal(output, triangles_, f).norm();
-    total += s.area[f];
-  }
+  run_in_parts(count, parts, [&](long begin, long end) {
+    for (Eigen::Index f = begin; f < end; ++f) s.area[f] = 0.5 * doubled_normal(output, triangles_, f).norm();
+  });
+  const double total = total_area(s.area);
   s.scale2 = input_total_ > 0.0 && total > 0.0 ? total / input_total_ : 1.0;
+  run_in_parts(count, parts, [&](long begin, long end) {
+    for (Eigen::Index f = begin; f < end; ++f) update_face_state(output, f, s);
+  });
   int flipped = 0;
   double max_deviation = 0.0;
-#pragma omp parallel for num_threads(threads) reduction(+ : flipped) reduction(max : max_deviation)
   for (Eigen::Index f = 0; f < count; ++f) {
-    update_face_state(output, f, s);
     flipped += s.flipped[f];
     max_deviation = std::max(max_deviation, s.deviation_deg[f]);
   }
@@ -127,33 +135,29 @@ double QualityMeasure::fold_flags(const Vertices& output, TriangleAreas& areas, 
   std::vector<double>& along = areas.along;  // doubled normal . label axis
   area.resize(count);
   along.resize(count);
-  double total = 0.0;
-#pragma omp parallel for num_threads(parallel_threads(count)) reduction(+ : total)
-  for (Eigen::Index f = 0; f < count; ++f) {
-    const Eigen::Vector3d normal = doubled_normal(output, triangles_, f);
-    area[f] = 0.5 * normal.norm();
-    along[f] = normal.dot(label_axis(labels_[f]));
-    total += area[f];
-  }
-  return flags_from(areas, total, collapsed, flipped);
+  run_in_parts(count, loop_parts(count), [&](long begin, long end) {
+    for (Eigen::Index f = begin; f < end; ++f) {
+      const Eigen::Vector3d normal = doubled_normal(output, triangles_, f);
+      area[f] = 0.5 * normal.norm();
+      along[f] = normal.dot(label_axis(labels_[f]));
+    }
+  });
+  return flags_from(areas, total_area(area), collapsed, flipped);
 }
 
 double QualityMeasure::rescale_moved(const Vertices& output, const std::vector<int>& moved,
                                      TriangleAreas& areas) const {
   const long count_moved = static_cast<long>(moved.size());
-#pragma omp parallel for num_threads(parallel_threads(count_moved)) schedule(static)
-  for (long i = 0; i < count_moved; ++i) {
-    const int f = moved[i];
-    const Eigen::Vector3d normal = doubled_normal(output, triangles_, f);
-    areas.area[f] = 0.5 * normal.norm();
-    areas.along[f] = normal.dot(label_axis(labels_[f]));
-  }
+  run_in_parts(count_moved, loop_parts(count_moved), [&](long begin, long end) {
+    for (long i = begin; i < end; ++i) {
+      const int f = moved[i];
+      const Eigen::Vector3d normal = doubled_normal(output, triangles_, f);
+      areas.area[f] = 0.5 * normal.norm();
+      areas.along[f] = normal.dot(label_axis(labels_[f]));
+    }
+  });
   // Summed as fold_flags() sums them, so the scale is the same bit for bit.
-  const Eigen::Index count = triangles_.rows();
-  const std::vector<double>& area = areas.area;
-  double total = 0.0;
-#pragma omp parallel for num_threads(parallel_threads(count)) reduction(+ : total)
-  for (Eigen::Index f = 0; f < count; ++f) total += area[f];
+  const double total = total_area(areas.area);
   return input_total_ > 0.0 && total > 0.0 ? total / input_total_ : 1.0;
 }
 
@@ -164,11 +168,12 @@ double QualityMeasure::flags_from(const TriangleAreas& areas, double total, std:
   const double scale2 = input_total_ > 0.0 && total > 0.0 ? total / input_total_ : 1.0;
   collapsed.resize(count);
   flipped.resize(count);
-#pragma omp parallel for num_threads(parallel_threads(count))
-  for (Eigen::Index f = 0; f < count; ++f) {
-    collapsed[f] = is_collapsed(area[f], input_area_[f], scale2);
-    flipped[f] = !collapsed[f] && areas.along[f] < 0.0;
-  }
+  run_in_parts(count, loop_parts(count), [&](long begin, long end) {
+    for (Eigen::Index f = begin; f < end; ++f) {
+      collapsed[f] = is_collapsed(area[f], input_area_[f], scale2);
+      flipped[f] = !collapsed[f] && areas.along[f] < 0.0;
+    }
+  });
   return scale2;
 }
 

@@ -27,6 +27,21 @@ inline int parallel_threads(long work) {
 #endif
 }
 
+// How many parts a loop over `work` items is split into for run_in_parts()
+// (run_tasks.h), whose threads sleep between tasks instead of spinning like
+// OpenMP's: from a tenth of the threshold above, where a loop takes about a
+// tenth of a millisecond, a few times what a sleeping thread takes to wake.
+constexpr long kTaskLoopThreshold = kParallelThreshold / 10;
+
+inline int loop_parts(long work) {
+#ifdef _OPENMP
+  return work < kTaskLoopThreshold ? 1 : omp_get_max_threads();
+#else
+  (void)work;
+  return 1;
+#endif
+}
+
 // How many threads share `tasks` independent tasks of milliseconds each (a
 // factorisation each): at that grain a descheduled worker costs less than
 // the tasks, so no threshold; at most one thread a task.
