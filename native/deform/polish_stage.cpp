@@ -113,15 +113,16 @@ Vertices controlled_blend(const Deformation& d, const ChartPlanes& planes, const
   // halved plane moves every vertex of its chart, but only the triangles
   // across the chart's edge change.
   std::vector<char> rigid(count, 0);
-#pragma omp parallel for num_threads(parallel_threads(count)) schedule(static)
-  for (Eigen::Index t = 0; t < count; ++t)
-    for (int axis = 0; axis < 3; ++axis) {
-      const int a = triangles(t, 0), b = triangles(t, 1), c = triangles(t, 2);
-      const std::vector<int>& unknown = planes.unknowns(axis);
-      if (unknown[a] == unknown[b] && unknown[a] == unknown[c] && d.x(a, axis) == d.x(b, axis) &&
-          d.x(a, axis) == d.x(c, axis) && step(a, axis) == step(b, axis) && step(a, axis) == step(c, axis))
-        rigid[t] |= static_cast<char>(1 << axis);
-    }
+  run_in_parts(count, loop_parts(count), [&](long begin, long end) {
+    for (Eigen::Index t = begin; t < end; ++t)
+      for (int axis = 0; axis < 3; ++axis) {
+        const int a = triangles(t, 0), b = triangles(t, 1), c = triangles(t, 2);
+        const std::vector<int>& unknown = planes.unknowns(axis);
+        if (unknown[a] == unknown[b] && unknown[a] == unknown[c] && d.x(a, axis) == d.x(b, axis) &&
+            d.x(a, axis) == d.x(c, axis) && step(a, axis) == step(b, axis) && step(a, axis) == step(c, axis))
+          rigid[t] |= static_cast<char>(1 << axis);
+      }
+  });
   for (Eigen::Index t = 0; t < count; ++t) {
     if (measured.along[t] < 0.0) against.push_back(static_cast<int>(t));
     if (blocks(t)) blocking.push_back(static_cast<int>(t));
@@ -356,8 +357,9 @@ struct Trial {
 };
 
 // Trials go in pairs (polish_stage) from this many triangles, below which
-// one costs about what waking a thread for it does, up to where a trial's
-// own loops take both cores (parallel.h).
+// one costs about what waking a thread for it does. A trial's own loops
+// then run on its thread alone (run_tasks.h): at scale its errors, on one
+// thread anyway, take a third of it.
 constexpr Eigen::Index kPairedTrialsFrom = 5'000;
 
 // Each smooth error's gradient by position at `x`, from the `slopes` of
@@ -518,7 +520,7 @@ int polish_stage(RobustRun& run, std::unique_ptr<ChartPlanes> factored) {
   Vertices best_x = d.x;
   int steps = 0, best_steps = 0;
   const Eigen::Index count = d.triangles().rows();
-  const bool paired_trials = count >= kPairedTrialsFrom && parallel_threads(count) == 1 && task_threads(2) > 1;
+  const bool paired_trials = count >= kPairedTrialsFrom && task_threads(2) > 1;
   for (; steps < kPolishRounds; ++steps) {
     // A step costs a second at a million triangles; a stop keeps the best so far.
     if (d.options.stop_requested && d.options.stop_requested()) break;
