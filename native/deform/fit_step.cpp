@@ -8,8 +8,12 @@ namespace polycube {
 
 FoldFreeStep fit_step(RobustRun& run) {
   Deformation& d = run.d;
-  const Rotations rotations = fitted_rotations(d.mesh.vertices, d.x, d.triangles(), d.weights, d.triangle_labels);
-  const Eigen::MatrixX3d rhs = rotated_edges_rhs(d.mesh.vertices, d.triangles(), d.weights, rotations) + d.shift * d.x;
+  const Eigen::MatrixX3d rhs = rotated_edges_rhs(d.mesh.vertices, d.triangles(), d.weights,
+                                                 [&](Eigen::Index t) {
+                                                   return fitted_rotation(d.mesh.vertices, d.x, d.triangles(),
+                                                                          d.weights, d.triangle_labels, t);
+                                                 }) +
+                                 d.shift * d.x;
   d.result.seconds.rotations += d.phase.lap();
   FoldFreeStep step = run.controlled_step(d.solve(d.factorization, rhs));
   d.result.seconds.solve += d.phase.lap();

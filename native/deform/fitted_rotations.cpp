@@ -10,9 +10,6 @@
 
 namespace polycube {
 
-namespace {
-
-// Triangle t's rotation (header).
 Eigen::Matrix3d fitted_rotation(const Vertices& input, const Vertices& current, const Triangles& triangles,
                                 const CotangentWeights& weights, const std::vector<int>& triangle_labels,
                                 Eigen::Index t) {
@@ -43,8 +40,6 @@ Eigen::Matrix3d fitted_rotation(const Vertices& input, const Vertices& current, 
   const double theta = (along == 0.0 && across == 0.0) ? 0.0 : std::atan2(across, along);
   return Eigen::AngleAxisd(theta, axis).toRotationMatrix() * r0;
 }
-
-}  // namespace
 
 Rotations fitted_rotations(const Vertices& input, const Vertices& current, const Triangles& triangles,
                            const CotangentWeights& weights, const std::vector<int>& triangle_labels) {

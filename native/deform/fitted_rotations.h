@@ -27,6 +27,11 @@ using Rotations = std::vector<Eigen::Matrix3d>;
 // A triangle of zero input area has no input normal: it takes the rotation of
 // its current normal onto its axis (the paper's), or the identity when it has
 // no current normal either.
+// Triangle t's alone, as fitted_rotations() gives it: for a caller that uses
+// each once (rotated_edges_rhs.h), without the list.
+Eigen::Matrix3d fitted_rotation(const Vertices& input, const Vertices& current, const Triangles& triangles,
+                                const CotangentWeights& weights, const std::vector<int>& triangle_labels,
+                                Eigen::Index t);
 Rotations fitted_rotations(const Vertices& input, const Vertices& current, const Triangles& triangles,
                            const CotangentWeights& weights, const std::vector<int>& triangle_labels);
 

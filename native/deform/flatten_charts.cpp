@@ -34,7 +34,9 @@ int thinnest_axis(const Vertices& x, const Triangles& triangles, Eigen::Index t,
 Eigen::MatrixX3d fitted_rhs(const Vertices& input, const Vertices& current, const Triangles& triangles,
                             const std::vector<int>& triangle_labels, const CotangentWeights& weights, double shift) {
   return rotated_edges_rhs(input, triangles, weights,
-                           fitted_rotations(input, current, triangles, weights, triangle_labels)) +
+                           [&](Eigen::Index t) {
+                             return fitted_rotation(input, current, triangles, weights, triangle_labels, t);
+                           }) +
          shift * current;
 }
 

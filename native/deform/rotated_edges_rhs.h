@@ -11,35 +11,37 @@
 #include "linear_algebra/cotangent_weights.h"
 #include "deform/fitted_rotations.h"
 #include "linear_algebra/parallel.h"
+#include "linear_algebra/run_tasks.h"
 
 namespace polycube {
 
 // `rotation(t)` gives R_t, so a caller can compute it on the fly rather than
-// store one matrix per triangle. Each thread scatters into its own copy of b
-// and the copies are summed after: cheaper than atomics, and the sum is in a
-// fixed order, so the result does not depend on scheduling.
+// store one matrix per triangle. Each triangle's three terms are computed in
+// parts on the task threads (run_tasks.h), then added to b triangle by
+// triangle on one thread: the same sums on any number of cores.
 template <class RotationOfTriangle>
 Vertices rotated_edges_rhs(const Vertices& source, const Triangles& triangles, const CotangentWeights& weights,
                            const RotationOfTriangle& rotation) {
-  const int threads = parallel_threads(triangles.rows());
-  std::vector<Vertices> partial(threads, Vertices::Zero(source.rows(), 3));
-#pragma omp parallel for num_threads(threads) schedule(static)
-  for (int part = 0; part < threads; ++part) {
-    Vertices& b = partial[part];
-    const Eigen::Index begin = triangles.rows() * part / threads, end = triangles.rows() * (part + 1) / threads;
+  const Eigen::Index count = triangles.rows();
+  std::vector<Eigen::Matrix3d> terms(count);  // column k: the term of the edge opposite corner k
+  run_in_parts(count, loop_parts(count), [&](long begin, long end) {
     for (Eigen::Index t = begin; t < end; ++t) {
       const Eigen::Matrix3d r = rotation(t);
       for (int k = 0; k < 3; ++k) {
         const int i = triangles(t, (k + 1) % 3), j = triangles(t, (k + 2) % 3);
         const Eigen::Vector3d edge = source.row(i) - source.row(j);
-        const Eigen::Vector3d term = weights(t, k) * (r * edge);
-        b.row(i) += term.transpose();
-        b.row(j) -= term.transpose();
+        terms[t].col(k) = weights(t, k) * (r * edge);
       }
     }
-  }
-  for (int part = 1; part < threads; ++part) partial[0] += partial[part];
-  return std::move(partial[0]);
+  });
+  Vertices b = Vertices::Zero(source.rows(), 3);
+  for (Eigen::Index t = 0; t < count; ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int i = triangles(t, (k + 1) % 3), j = triangles(t, (k + 2) % 3);
+      b.row(i) += terms[t].col(k).transpose();
+      b.row(j) -= terms[t].col(k).transpose();
+    }
+  return b;
 }
 
 inline Vertices rotated_edges_rhs(const Vertices& source, const Triangles& triangles, const CotangentWeights& weights,

@@ -2,6 +2,7 @@
 
 #include <Eigen/SparseCholesky>
 
+#include "linear_algebra/run_tasks.h"
 #include "linear_algebra/supernodal_factor.h"
 #include "mesh/mesh.h"
 
@@ -160,7 +161,19 @@ void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& matrix) {
 
 Eigen::MatrixX3d SparseCholesky::solve(const Eigen::MatrixX3d& rhs) const {
   if (backends_->supernodal) return backends_->supernodal->solve(rhs);
-  return backends_->simplicial->solve_columns<3>(rhs);
+  const Simplicial& factor = *backends_->simplicial;
+  if (rows_ < kSplitSolveFrom) return factor.solve_columns<3>(rhs);
+  // Two columns in one pass and the third beside it on another thread:
+  // each column the bits it has alone, two passes over the factor at once
+  // instead of one three times as wide (B0's input: 1.2 -> 0.8 ms).
+  Eigen::MatrixX3d x(rhs.rows(), 3);
+  run_tasks(2, [&](int i) {
+    if (i == 0)
+      x.leftCols<2>() = factor.solve_columns<2>(rhs.leftCols<2>());
+    else
+      x.col(2) = factor.solve(Eigen::VectorXd(rhs.col(2)));
+  });
+  return x;
 }
 
 Eigen::MatrixX2d SparseCholesky::solve(const Eigen::MatrixX2d& rhs) const {

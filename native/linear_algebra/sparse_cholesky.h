@@ -21,6 +21,9 @@ class SparseCholesky {
  public:
   // Systems with at least this many unknowns use CHOLMOD when its plugin loads.
   static constexpr int kSupernodalThreshold = 50'000;
+  // Below it, three right-hand sides are solved in one pass on one thread;
+  // from it, two and one on two (solve()).
+  static constexpr int kSplitSolveFrom = 5'000;
 
   SparseCholesky();
   ~SparseCholesky();
