@@ -214,6 +214,7 @@ Figures QualityMeasure::measure(const Vertices& output, const FaceStates& s, boo
     }
     weighted_deviation += s.area[f] * s.deviation_deg[f];
     counted_area += s.area[f];
+    if (!errors) continue;
     const Eigen::Vector3d unit = doubled_normal(output, triangles_, f) / (2.0 * s.area[f]);
     const double largest = unit.cwiseAbs().maxCoeff();
     nearest_max = std::max(nearest_max, std::acos(std::min(1.0, largest)) * kDegreesPerRadian);

@@ -110,9 +110,11 @@ class QualityMeasure {
   bool turned_over(const TriangleAreas& areas, Eigen::Index f, double scale2) const {
     return areas.along[f] < 0.0 && !is_collapsed(areas.area[f], input_area_[f], scale2);
   }
-  // Without `errors`, the edge and area error means and the largest area
-  // ratio are left at 0: the stopping rule needs only the normal figures,
-  // and the edge pass is the costliest part.
+  // Without `errors`, the edge and area error means, the largest area ratio
+  // and the nearest-axis deviation are left at 0: the stopping rule needs
+  // only the normal figures, and the edge pass and the nearest axes' arc
+  // cosines are the costliest parts (B0: its ten iterations' measurements
+  // 4.4 -> 2.0 ms).
   Figures measure(const Vertices& output, bool errors = true) const;
   // The same from `states` = face_states(output), already measured.
   Figures measure(const Vertices& output, const FaceStates& states, bool errors = true) const;

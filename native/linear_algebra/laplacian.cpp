@@ -6,35 +6,53 @@
 namespace polycube {
 
 Laplacian::Laplacian(int vertex_count, const Triangles& triangles) {
-  std::vector<Eigen::Triplet<double>> pattern;
-  pattern.reserve(static_cast<size_t>(vertex_count) + 6 * static_cast<size_t>(triangles.rows()));
-  for (int v = 0; v < vertex_count; ++v) pattern.emplace_back(v, v, 0.0);
-  for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
-    for (int k = 0; k < 3; ++k) {
-      const int v = triangles(t, (k + 1) % 3), w = triangles(t, (k + 2) % 3);
-      pattern.emplace_back(v, w, 0.0);
-      pattern.emplace_back(w, v, 0.0);
+  // Each column's entries straight into the matrix, with the slot each one
+  // fills: counted, placed, then each column's few sorted by row. The same
+  // pattern as setFromTriplets and the same slots as looking every entry up
+  // in it, without the triplets and the lookups (B0: 1.9 -> 1.2 ms, ahead of
+  // the analysis that waits for it).
+  // For triangle t, the entry (t(k+1), t(k)) is slot (w, v) of the edge
+  // opposite corner k+2, and (t(k+2), t(k)) slot (v, w) of the edge opposite
+  // corner k+1 (slots_); -1 marks a column's diagonal.
+  const Eigen::Index count = triangles.rows();
+  std::vector<int> first(static_cast<size_t>(vertex_count) + 1, 0);
+  for (int v = 0; v < vertex_count; ++v) ++first[v + 1];
+  for (Eigen::Index t = 0; t < count; ++t)
+    for (int k = 0; k < 3; ++k) first[triangles(t, k) + 1] += 2;
+  for (int v = 0; v < vertex_count; ++v) first[v + 1] += first[v];
+  std::vector<std::pair<int, int>> entries(first[vertex_count]);  // (row, slot) per column
+  {
+    std::vector<int> next(first.begin(), first.end() - 1);
+    for (int v = 0; v < vertex_count; ++v) entries[next[v]++] = {v, -1};
+    for (Eigen::Index t = 0; t < count; ++t)
+      for (int k = 0; k < 3; ++k) {
+        const int column = triangles(t, k);
+        entries[next[column]++] = {triangles(t, (k + 1) % 3), static_cast<int>(2 * (3 * t + (k + 2) % 3) + 1)};
+        entries[next[column]++] = {triangles(t, (k + 2) % 3), static_cast<int>(2 * (3 * t + (k + 1) % 3))};
+      }
+  }
+  slots_.resize(3 * static_cast<size_t>(count));
+  diagonal_slots_.resize(vertex_count);
+  std::vector<int> inner, outer(static_cast<size_t>(vertex_count) + 1, 0);
+  inner.reserve(entries.size());
+  for (int column = 0; column < vertex_count; ++column) {
+    const auto begin = entries.begin() + first[column], end = entries.begin() + first[column + 1];
+    std::sort(begin, end);
+    for (auto e = begin; e != end; ++e) {
+      if (e == begin || e->first != (e - 1)->first) inner.push_back(e->first);
+      const int position = static_cast<int>(inner.size()) - 1;
+      if (e->second < 0)
+        diagonal_slots_[column] = position;
+      else
+        slots_[e->second / 2][e->second % 2] = position;
     }
+    outer[column + 1] = static_cast<int>(inner.size());
   }
   matrix_.resize(vertex_count, vertex_count);
-  matrix_.setFromTriplets(pattern.begin(), pattern.end());
-  matrix_.makeCompressed();
-
-  // The pattern is fixed, so look each entry up once, not every assembly.
-  auto slot = [&](int row, int col) {
-    const int* begin = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[col];
-    const int* end = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[col + 1];
-    return static_cast<int>(std::lower_bound(begin, end, row) - matrix_.innerIndexPtr());
-  };
-  diagonal_slots_.resize(vertex_count);
-  for (int v = 0; v < vertex_count; ++v) diagonal_slots_[v] = slot(v, v);
-  slots_.resize(3 * static_cast<size_t>(triangles.rows()));
-  for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
-    for (int k = 0; k < 3; ++k) {
-      const int v = triangles(t, (k + 1) % 3), w = triangles(t, (k + 2) % 3);
-      slots_[3 * t + k] = {slot(v, w), slot(w, v)};
-    }
-  }
+  matrix_.resizeNonZeros(static_cast<Eigen::Index>(inner.size()));
+  std::copy(outer.begin(), outer.end(), matrix_.outerIndexPtr());
+  std::copy(inner.begin(), inner.end(), matrix_.innerIndexPtr());
+  std::fill(matrix_.valuePtr(), matrix_.valuePtr() + inner.size(), 0.0);
 }
 
 double Laplacian::assemble(const CotangentWeights& weights, double relative_shift) {
