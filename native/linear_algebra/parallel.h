@@ -29,13 +29,15 @@ inline int parallel_threads(long work) {
 
 // How many parts a loop over `work` items is split into for run_in_parts()
 // (run_tasks.h), whose threads sleep between tasks instead of spinning like
-// OpenMP's: from a tenth of the threshold above, where a loop takes about a
-// tenth of a millisecond, a few times what a sleeping thread takes to wake.
+// OpenMP's: a part for each tenth of the threshold above (a loop of about
+// a tenth of a millisecond, a few times what a sleeping thread takes to
+// wake), at most a thread each, so that many cores do not split a small
+// loop into parts of nothing.
 constexpr long kTaskLoopThreshold = kParallelThreshold / 10;
 
 inline int loop_parts(long work) {
 #ifdef _OPENMP
-  return work < kTaskLoopThreshold ? 1 : omp_get_max_threads();
+  return static_cast<int>(std::clamp(work / kTaskLoopThreshold, 1L, static_cast<long>(omp_get_max_threads())));
 #else
   (void)work;
   return 1;

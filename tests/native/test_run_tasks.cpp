@@ -12,7 +12,13 @@
 #include <tuple>
 #include <vector>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "deform/deform.h"
 #include "deform/quality.h"
+#include "labels/nearest_labels.h"
 #include "linear_algebra/run_tasks.h"
 #include "mesh/sort_by_vertex.h"
 #include "mesh/triangulate.h"
@@ -113,6 +119,32 @@ TEST(RunTasks, FaceStatesInPartsAreTheSerialOnes) {
   }
   EXPECT_EQ(s.scale2, total / quality.input_total_area());
   EXPECT_EQ(s.flipped_count, flipped);
+}
+
+// The whole run on one thread and on several: the same positions and
+// figures to the bit (every sum is taken in order on one thread, every task
+// is the one thread's work).
+TEST(RunTasks, ADeformationIsTheSameOnAnyNumberOfThreads) {
+#ifndef _OPENMP
+  GTEST_SKIP() << "built without OpenMP: one thread only";
+#else
+  const PolygonMesh mesh = test_meshes::uv_sphere(96, 48, {1.0, 0.8, 0.6});
+  const std::vector<int> labels = nearest_labels(mesh);
+  const int before = omp_get_max_threads();
+  std::vector<DeformResult> results;
+  for (int threads : {1, 2, 4}) {
+    omp_set_num_threads(threads);
+    results.push_back(deform(mesh, labels));
+  }
+  omp_set_num_threads(before);
+  ASSERT_GE(triangulate(mesh.vertices, mesh.faces).triangles.rows(), 5000);
+  for (size_t k = 1; k < results.size(); ++k) {
+    EXPECT_TRUE(results[k].positions == results[0].positions) << "run " << k;
+    EXPECT_EQ(results[k].figures.edge_error, results[0].figures.edge_error);
+    EXPECT_EQ(results[k].figures.area_error, results[0].figures.area_error);
+    EXPECT_EQ(results[k].iterations, results[0].iterations);
+  }
+#endif
 }
 
 }  // namespace
