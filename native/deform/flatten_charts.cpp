@@ -31,15 +31,6 @@ int thinnest_axis(const Vertices& x, const Triangles& triangles, Eigen::Index t,
   return best_axis;
 }
 
-Eigen::MatrixX3d fitted_rhs(const Vertices& input, const Vertices& current, const Triangles& triangles,
-                            const std::vector<int>& triangle_labels, const CotangentWeights& weights, double shift) {
-  return rotated_edges_rhs(input, triangles, weights,
-                           [&](Eigen::Index t) {
-                             return fitted_rotation(input, current, triangles, weights, triangle_labels, t);
-                           }) +
-         shift * current;
-}
-
 // Local solves (ChartPlanes::solve_near) cover the flipped triangles and this
 // many rings of triangles around them, doubling when a round does not reduce
 // the folds.

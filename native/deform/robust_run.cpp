@@ -4,6 +4,7 @@
 #include "deform/flatten_stage.h"
 #include "deform/relabel_stalled_faces.h"
 #include "deform/relax_stage.h"
+#include "deform/rotated_edges_rhs.h"
 #include "linear_algebra/run_tasks.h"
 #include "mesh/mesh_adjacency.h"
 
@@ -35,18 +36,23 @@ RobustRun::RobustRun(Deformation& deformation) : d(deformation) {
   d.shift = d.laplacian.assemble(d.weights, kRelativeShift);
   result.seconds.assemble += d.phase.lap();
   if (!result.converged) {
-    // The flat charts' orderings on a second thread meanwhile: their
-    // analyses only need the Laplacian's pattern and the labels.
+    // On a second thread meanwhile, what needs only the positions, the
+    // labels and the Laplacian's pattern: the flat charts' orderings, the
+    // start's states and the first fitting step's right-hand side.
     ordered = std::make_unique<ChartPlanes>(d.n, d.triangles(), d.triangle_labels);
     run_tasks(2, [&](int i) {
-      if (i == 0)
+      if (i == 0) {
         d.factorization.factorize(d.laplacian.matrix());
-      else
-        ordered->order(d.laplacian.matrix());
+        return;
+      }
+      ordered->order(d.laplacian.matrix());
+      state = d.quality.face_states(d.x);
+      first_fit_rhs = fitted_rhs(d.mesh.vertices, d.x, d.triangles(), d.triangle_labels, d.weights, d.shift);
     });
+  } else {
+    state = d.quality.face_states(d.x);
   }
   result.seconds.factorize += d.phase.lap();
-  state = d.quality.face_states(d.x);
   diagonal = (d.mesh.vertices.colwise().maxCoeff() - d.mesh.vertices.colwise().minCoeff()).norm();
 }
 

@@ -53,8 +53,10 @@ struct RobustRun {
   // Once flat (flatten_stage): the charts and collapses, factorised.
   std::unique_ptr<ChartPlanes> planes;
   // The start labels' charts, ordered (ChartPlanes::order) beside the
-  // input's factorisation, for the first flattening attempt.
+  // input's factorisation, for the first flattening attempt; and, made
+  // there too, the first fitting step's right-hand side.
   std::unique_ptr<ChartPlanes> ordered;
+  Eigen::MatrixX3d first_fit_rhs;
   bool relaxed = false, uncollapsed = false, untangle_tried = false;
   int flatten_attempts = 0, last_attempt = 0;
 

@@ -49,4 +49,17 @@ inline Vertices rotated_edges_rhs(const Vertices& source, const Triangles& trian
   return rotated_edges_rhs(source, triangles, weights, [&](Eigen::Index t) { return rotations[t]; });
 }
 
+// The fitting's right-hand side (fit_step.h, flatten_charts.h): the input's
+// edges turned by the rotations fitted to `current`, plus the Laplacian's
+// diagonal `shift` times `current` (deformation.h).
+inline Eigen::MatrixX3d fitted_rhs(const Vertices& input, const Vertices& current, const Triangles& triangles,
+                                   const std::vector<int>& triangle_labels, const CotangentWeights& weights,
+                                   double shift) {
+  return rotated_edges_rhs(input, triangles, weights,
+                           [&](Eigen::Index t) {
+                             return fitted_rotation(input, current, triangles, weights, triangle_labels, t);
+                           }) +
+         shift * current;
+}
+
 }  // namespace polycube
