@@ -46,7 +46,7 @@ Rotations fitted_rotations(const Vertices& input, const Vertices& current, const
   Rotations rotations(triangles.rows());
   // A rotation costs about what four triangles' measurements do
   // (parallel.h's unit of work).
-  run_in_parts(triangles.rows(), parallel_threads(4 * triangles.rows()), [&](long begin, long end) {
+  run_in_parts(triangles.rows(), loop_parts(4 * triangles.rows()), [&](long begin, long end) {
     for (Eigen::Index t = begin; t < end; ++t)
       rotations[t] = fitted_rotation(input, current, triangles, weights, triangle_labels, t);
   });

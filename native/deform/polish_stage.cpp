@@ -250,17 +250,21 @@ struct Slopes {
   std::array<double, 2> by_scale = {0.0, 0.0};
 };
 
-// The triangles' areas signed along their axes, and their sum.
-double axis_areas(const Deformation& d, const Vertices& x, std::vector<double>& area) {
+// The triangles' areas signed along their axes, and their sum; with
+// `unsigned_total`, the sum of their plain areas too.
+double axis_areas(const Deformation& d, const Vertices& x, std::vector<double>& area,
+                  double* unsigned_total = nullptr) {
   const Triangles& triangles = d.triangles();
   area.resize(triangles.rows());
-  double total = 0.0;
+  double total = 0.0, plain = 0.0;
   for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
     const Eigen::Vector3d pa = x.row(triangles(t, 0)), pb = x.row(triangles(t, 1)), pc = x.row(triangles(t, 2));
     const Eigen::Vector3d normal = (pb - pa).cross(pc - pa);
     area[t] = 0.5 * normal.dot(label_axis(d.triangle_labels[t]));
     total += area[t];
+    if (unsigned_total) plain += 0.5 * normal.norm();
   }
+  if (unsigned_total) *unsigned_total = plain;
   return total;
 }
 
@@ -323,14 +327,9 @@ void figure_errors(const Deformation& d, const Vertices& x, Errors& errors) {
   const auto& lengths = q.input_lengths();
   const auto& areas = q.input_areas();
   const Triangles& triangles = d.triangles();
-  std::vector<double> area(triangles.rows());
+  std::vector<double> area;
   double figure_total = 0.0;
-  for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
-    const Eigen::Vector3d pa = x.row(triangles(t, 0)), pb = x.row(triangles(t, 1)), pc = x.row(triangles(t, 2));
-    const Eigen::Vector3d normal = (pb - pa).cross(pc - pa);
-    area[t] = 0.5 * normal.dot(label_axis(d.triangle_labels[t]));
-    figure_total += 0.5 * normal.norm();
-  }
+  axis_areas(d, x, area, &figure_total);
   const double figure_s2 = figure_total / q.input_total_area(), figure_scale = std::sqrt(figure_s2);
   double figure_edge = 0.0, figure_area = 0.0;
   long measured_edges = 0, measured_triangles = 0;
