@@ -171,7 +171,8 @@ void ChartPlanes::order(const Eigen::SparseMatrix<double>& laplacian) {
     const int m = number_unknowns(axis, n, of_root, unknown);
     SparseCholesky analysis;
     analysis.analyze(reduced_matrix(laplacian, unknown, m));
-    chart_orderings_[axis] = std::make_shared<const ChartOrdering>(ChartOrdering{analysis.ordering(), unknown});
+    chart_orderings_[axis] =
+        std::make_shared<const ChartOrdering>(ChartOrdering{analysis.ordering(), unknown, analysis.copy_analysis()});
   }
 }
 
@@ -203,26 +204,33 @@ void ChartPlanes::factorize(const Eigen::SparseMatrix<double>& laplacian) {
 void ChartPlanes::factorize_axis(const Eigen::SparseMatrix<double>& laplacian, int axis, int m) {
   const std::vector<int>& unknown = unknown_[axis];
   const Eigen::SparseMatrix<double> reduced = reduced_matrix(laplacian, unknown, m);
-  auto cholesky = std::make_shared<SparseCholesky>();
   // The charts' own ordering when known; at scale, one joined from it for
   // a system with collapses (where an analysis costs most); otherwise
   // computed. Below that, a system with collapses is analysed afresh as
   // it always was: another ordering rounds its factor otherwise, and the
   // runs' decisions follow figures near their bounds (the anchor's last
-  // resort ended with 15% of its area collapsed instead of 0.03%).
+  // resort ended with 15% of its area collapsed instead of 0.03%). The
+  // charts' own system, analysed before at scale, is not analysed again.
   const ChartOrdering* charts = chart_orderings_[axis].get();
   const bool joined =
       charts && (charts_only_[axis] ? charts->unknown == unknown : m >= SparseCholesky::kSupernodalThreshold);
-  cholesky->analyze(reduced,
-                    joined ? joined_ordering(charts->ordering, charts->unknown, unknown, m) : SparseCholesky::Ordering());
-  if (charts_only_[axis] && !joined)
-    chart_orderings_[axis] = std::make_shared<const ChartOrdering>(ChartOrdering{cholesky->ordering(), unknown});
+  std::shared_ptr<SparseCholesky> cholesky;
+  if (joined && charts_only_[axis] && charts->analysis) cholesky = charts->analysis->copy_analysis();
+  if (!cholesky) {
+    cholesky = std::make_shared<SparseCholesky>();
+    cholesky->analyze(reduced, joined ? joined_ordering(charts->ordering, charts->unknown, unknown, m)
+                                      : SparseCholesky::Ordering());
+    if (charts_only_[axis] && !joined)
+      chart_orderings_[axis] = std::make_shared<const ChartOrdering>(
+          ChartOrdering{cholesky->ordering(), unknown, cholesky->copy_analysis()});
+  }
   cholesky->factorize(reduced);
   cholesky_[axis] = std::move(cholesky);
 }
 
 template <int K>
-std::array<Vertices, K> ChartPlanes::solve_together(const std::array<const Eigen::MatrixX3d*, K>& rhs) const {
+std::array<Vertices, K> ChartPlanes::solve_together(const std::array<const Eigen::MatrixX3d*, K>& rhs,
+                                                    const std::function<void()>& beside) const {
   // A vector for one solve: SparseCholesky solves it as a vector.
   using Columns = std::conditional_t<K == 1, Eigen::VectorXd, Eigen::Matrix<double, Eigen::Dynamic, K>>;
   solves_ += K;
@@ -230,7 +238,8 @@ std::array<Vertices, K> ChartPlanes::solve_together(const std::array<const Eigen
   std::array<Vertices, K> x;
   for (Vertices& solution : x) solution.resize(n, 3);
   // Independent back-substitutions, each axis's on a thread of its own.
-  run_tasks(3, [&](int axis) {
+  run_tasks(beside ? 4 : 3, [&](int axis) {
+    if (axis == 3) return beside();
     const std::vector<int>& unknown = unknown_[axis];
     Columns b = Columns::Zero(cholesky_[axis]->rows(), K);
     for (Eigen::Index v = 0; v < n; ++v)
@@ -244,8 +253,9 @@ std::array<Vertices, K> ChartPlanes::solve_together(const std::array<const Eigen
 
 Vertices ChartPlanes::solve(const Eigen::MatrixX3d& rhs) const { return std::move(solve_together<1>({&rhs})[0]); }
 
-std::array<Vertices, 2> ChartPlanes::solve(const Eigen::MatrixX3d& first, const Eigen::MatrixX3d& second) const {
-  return solve_together<2>({&first, &second});
+std::array<Vertices, 2> ChartPlanes::solve(const Eigen::MatrixX3d& first, const Eigen::MatrixX3d& second,
+                                           const std::function<void()>& beside) const {
+  return solve_together<2>({&first, &second}, beside);
 }
 
 bool ChartPlanes::solve_near(const Eigen::SparseMatrix<double>& laplacian, const Eigen::MatrixX3d& rhs,
@@ -253,14 +263,15 @@ bool ChartPlanes::solve_near(const Eigen::SparseMatrix<double>& laplacian, const
   const int n = static_cast<int>(positions.rows());
   const double scale = std::max(1.0, positions.cwiseAbs().maxCoeff());
   Vertices result = positions;
-  std::vector<int> unknown(n);
-  std::vector<double> lo(n), hi(n);
-  std::vector<char> held(n);
-  std::vector<Eigen::Triplet<double>> entries;
-  for (int axis = 0; axis < 3; ++axis) {
+  // The axes are independent (each its own sets, its own column of
+  // `result`): each on a thread of its own.
+  std::array<char, 3> placed = {1, 1, 1};
+  run_tasks(3, [&](int axis) {
+    std::vector<int> unknown(n, -1), of_root(n, -1);
+    std::vector<double> lo(n), hi(n);
+    std::vector<char> held(n, 0);
     // A set with a vertex outside the region is held at that vertex's value;
     // all of its outside vertices must agree on it.
-    std::fill(held.begin(), held.end(), 0);
     for (int v = 0; v < n; ++v) {
       if (region[v]) continue;
       const int r = root(axis, v);
@@ -270,21 +281,22 @@ bool ChartPlanes::solve_near(const Eigen::SparseMatrix<double>& laplacian, const
       hi[r] = std::max(hi[r], positions(v, axis));
     }
     int m = 0;
-    std::fill(unknown.begin(), unknown.end(), -1);
-    std::vector<int> of_root(n, -1);
     for (int v = 0; v < n; ++v) {
       const int r = root(axis, v);
       if (held[r]) {
-        if (hi[r] - lo[r] > 1e-12 * scale) return false;
+        if (hi[r] - lo[r] > 1e-12 * scale) {
+          placed[axis] = 0;
+          return;
+        }
         result(v, axis) = lo[r];
       } else {
         if (of_root[r] < 0) of_root[r] = m++;
         unknown[v] = of_root[r];
       }
     }
-    if (m == 0) continue;
+    if (m == 0) return;
     Eigen::VectorXd b = Eigen::VectorXd::Zero(m);
-    entries.clear();
+    std::vector<Eigen::Triplet<double>> entries;
     for (int column = 0; column < laplacian.outerSize(); ++column)
       for (Eigen::SparseMatrix<double>::InnerIterator it(laplacian, column); it; ++it) {
         const int row = unknown[it.row()];
@@ -304,7 +316,8 @@ bool ChartPlanes::solve_near(const Eigen::SparseMatrix<double>& laplacian, const
     const Eigen::VectorXd y = local.solve(b);
     for (int v = 0; v < n; ++v)
       if (unknown[v] >= 0) result(v, axis) = y[unknown[v]];
-  }
+  });
+  if (!placed[0] || !placed[1] || !placed[2]) return false;
   positions = std::move(result);
   return true;
 }

@@ -20,6 +20,7 @@
 
 #include <Eigen/SparseCore>
 #include <array>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -92,8 +93,12 @@ class ChartPlanes {
   // each axis's back-substitution on a thread of its own.
   Vertices solve(const Eigen::MatrixX3d& rhs) const;
   // Two solves at once, each to the bits it would have alone, reading each
-  // factor once (sparse_cholesky.h); counted as two.
-  std::array<Vertices, 2> solve(const Eigen::MatrixX3d& first, const Eigen::MatrixX3d& second) const;
+  // factor once (sparse_cholesky.h); counted as two. `beside`, when given,
+  // runs among the three axes' back-substitutions, on the thread the first
+  // to end frees: three tasks on two cores leave one idle for a third of
+  // the time.
+  std::array<Vertices, 2> solve(const Eigen::MatrixX3d& first, const Eigen::MatrixX3d& second,
+                                const std::function<void()>& beside = nullptr) const;
   // Per vertex, its unknown of coordinate `axis` as of the last factorize():
   // vertices that share one move together, or the charts stop being flat.
   const std::vector<int>& unknowns(int axis) const { return unknown_[axis]; }
@@ -110,7 +115,8 @@ class ChartPlanes {
   int number_unknowns(int axis, int n, std::vector<int>& of_root, std::vector<int>& unknown) const;
   // The K solves of solve(), one back-substitution per axis for all of them.
   template <int K>
-  std::array<Vertices, K> solve_together(const std::array<const Eigen::MatrixX3d*, K>& rhs) const;
+  std::array<Vertices, K> solve_together(const std::array<const Eigen::MatrixX3d*, K>& rhs,
+                                         const std::function<void()>& beside = nullptr) const;
 
   const Triangles& triangles_;
   mutable std::array<UnionFind, 3> sets_;    // per axis: vertices sharing that coordinate
@@ -122,9 +128,14 @@ class ChartPlanes {
   // unknown in it: the systems with collapses, whose unknowns join the
   // charts', are ordered from it.
   std::array<bool, 3> charts_only_ = {true, true, true};
+  // At scale, the whole analysis too (SparseCholesky::copy_analysis):
+  // factorising the same charts again, as the first flattening and the
+  // charts without collapses do, then skips it (B0 refined 64 times: 0.2
+  // s per axis).
   struct ChartOrdering {
     SparseCholesky::Ordering ordering;
     std::vector<int> unknown;
+    std::shared_ptr<const SparseCholesky> analysis;
   };
   // Shared by the planes that take them (a vertex's worth of memory each at
   // scale, several planes alive at once).

@@ -98,6 +98,10 @@ FlatCharts flatten_charts(const Vertices& input, const Vertices& current, const 
     result.states = quality.face_states(result.positions);
     if (result.rounds == 1) {
       result.first_positions = result.positions;
+      if (n >= kKeepChartFactorsFrom) {
+        result.charts = std::make_unique<ChartPlanes>(n, triangles, triangle_labels);
+        result.charts->use_chart_factors(*result.planes);
+      }
     }
     result.collapsed_area = quality.collapsed_area_fraction(result.states);
     if (result.collapsed_area > max_collapsed) return result;

@@ -39,7 +39,18 @@ struct FlatCharts {
   Vertices first_positions;             // of the first (global) solve: flat, nothing collapsed on purpose
   int collapsed_on_purpose = 0;         // triangles collapsed to undo a fold
   double collapsed_area = 0.0;          // share of the input's area collapsed
+  // From kKeepChartFactorsFrom vertices: the first solve's planes, the
+  // charts alone with their factors, which collapses replace in `planes`.
+  // The charts without collapses (relax_stage.h) take them instead of
+  // factorising the same systems again.
+  std::unique_ptr<ChartPlanes> charts;
 };
+
+// At scale a chart system's factorisation costs more than a second (B0
+// refined 64 times: 1.3-1.8 s per axis), and the same charts without
+// collapses factorise again what the first solve had: keeping those
+// factors (a third of a GiB per axis there) costs memory for time.
+constexpr int kKeepChartFactorsFrom = 50'000;
 
 // Puts a solve back where the mesh stands (Deformation::place: component centroids).
 using Placement = std::function<Vertices(const Eigen::MatrixX3d& solution)>;

@@ -21,6 +21,7 @@ void flatten_stage(RobustRun& run, int iteration) {
                                    d.laplacian.matrix(), d.shift, d.quality, place, d.options.max_collapsed_share,
                                    kFlattenRounds, run.ordered.get());
   run.ordered.reset();  // its orderings are the attempt's planes' now
+  run.chart_factors = std::move(flat.charts);
   result.seconds.factorize += d.phase.lap();  // nearly all of it
   result.factorizations += flat.planes->factorizations();
   result.back_substitutions += flat.planes->solves();
@@ -45,6 +46,7 @@ void flatten_stage(RobustRun& run, int iteration) {
     }
   }
   if (!flat.found) {
+    run.chart_factors.reset();  // not beside the input's factor
     d.restore_factorization();  // the continuous stage goes on
     // Charged here: left in the phase, the iteration's measurement would take
     // it, and the iteration's stage, losing it twice, could fall below zero.

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <utility>
 #include <vector>
@@ -470,9 +471,11 @@ LeftOut left_out_of(const RobustRun& run) {
 // gradient: a step along it keeps the charts flat and moves regions rather
 // than single vertices; two back-substitutions), then the blend of the two
 // shortest in L's norm: along it neither error grows (the common descent
-// direction of two objectives) unless no step can do that.
-Vertices common_descent(const ChartPlanes& planes, const std::array<Vertices, 2>& gradients) {
-  const std::array<Vertices, 2> steps = planes.solve(-gradients[0], -gradients[1]);
+// direction of two objectives) unless no step can do that. `beside` runs
+// beside the back-substitutions (ChartPlanes::solve).
+Vertices common_descent(const ChartPlanes& planes, const std::array<Vertices, 2>& gradients,
+                        const std::function<void()>& beside) {
+  const std::array<Vertices, 2> steps = planes.solve(-gradients[0], -gradients[1], beside);
   // <s_i, s_j> in L's norm is -g_i . s_j.
   const double a = -(gradients[0].cwiseProduct(steps[0])).sum(), b = -(gradients[1].cwiseProduct(steps[1])).sum(),
                c = -(gradients[0].cwiseProduct(steps[1])).sum();
@@ -526,14 +529,17 @@ int polish_stage(RobustRun& run, std::unique_ptr<ChartPlanes> factored) {
     const double sum = errors.edge + errors.area;
     sums.push_back(sum);
     if (steps >= kPolishWindow && sums[steps - kPolishWindow] - sum < kPolishGain * sum) break;
-    const Vertices direction = common_descent(planes, gradients);
+    // The areas where this step starts, measured beside the descent's
+    // back-substitutions (the run's until a step moves them).
+    const Vertices direction = common_descent(planes, gradients, [&] {
+      if (steps > 0) d.quality.fold_flags(d.x, unused_collapsed, unused_flipped, &areas_now);
+    });
     d.result.back_substitutions += 2;
     const double largest = direction.rowwise().norm().maxCoeff();
     if (!(largest > 0.0)) break;
     if (step_length == 0.0) step_length = kPolishFirstStep * run.diagonal / largest;
     // The longest step, halving from twice the last one kept, along which
     // neither smooth error grows.
-    if (steps > 0) d.quality.fold_flags(d.x, unused_collapsed, unused_flipped, &areas_now);
     auto trial = [&](double length) {
       Trial t;
       t.next = controlled_blend(d, planes, index, d.x + length * direction, collapsed, bounds, held, areas_now);

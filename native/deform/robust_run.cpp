@@ -76,9 +76,10 @@ FoldFreeStep RobustRun::controlled_step(const Vertices& target) {
   return step;
 }
 
-std::unique_ptr<ChartPlanes> RobustRun::charts_like(const ChartPlanes& same_charts) const {
+std::unique_ptr<ChartPlanes> RobustRun::charts_like(const ChartPlanes& same_charts) {
   auto planes = std::make_unique<ChartPlanes>(d.n, d.triangles(), d.triangle_labels);
-  planes->use_chart_factors(same_charts);
+  planes->use_chart_factors(chart_factors ? *chart_factors : same_charts);
+  chart_factors.reset();  // what it kept is shared by `planes` now, or no longer needed
   return planes;
 }
 

@@ -52,6 +52,10 @@ struct RobustRun {
   std::optional<TriangleIncidence> step_incidence;
   // Once flat (flatten_stage): the charts and collapses, factorised.
   std::unique_ptr<ChartPlanes> planes;
+  // At scale, until charts_like() takes them: the flattening's planes of
+  // the charts alone, factorised (FlatCharts::charts). Freed before
+  // Newton's factorisations of the whole mesh (untangle_step.h).
+  std::unique_ptr<ChartPlanes> chart_factors;
   // The start labels' charts, ordered (ChartPlanes::order) beside the
   // input's factorisation, for the first flattening attempt; and, made
   // there too, the first fitting step's right-hand side.
@@ -67,9 +71,10 @@ struct RobustRun {
   // components' centroids, which per-vertex steps move a little.
   FoldFreeStep controlled_step(const Vertices& target);
   // The charts of the current labels without collapses, sharing the factors
-  // of `same_charts` (of the same labels) it can, and factorising the others
-  // with their orderings (ChartPlanes::use_chart_factors).
-  std::unique_ptr<ChartPlanes> charts_like(const ChartPlanes& same_charts) const;
+  // of `same_charts` (of the same labels) it can, or those of
+  // `chart_factors` when kept, and factorising the others with their
+  // orderings (ChartPlanes::use_chart_factors).
+  std::unique_ptr<ChartPlanes> charts_like(const ChartPlanes& same_charts);
 
  private:
   std::vector<std::vector<int>> adjacency_;

@@ -14,7 +14,9 @@ UntangleStep untangle_step(RobustRun& run, const Vertices& flat, ChartPlanes& fa
   // planes'; local rounds alone keep them, and the same charts afterwards
   // share those of the axes never collapsed (RobustRun::charts_like).
   const auto release = [&] {
-    if (d.triangles().rows() >= kUntangleNewtonFrom) factored.release();
+    if (d.triangles().rows() < kUntangleNewtonFrom) return;
+    factored.release();
+    run.chart_factors.reset();
   };
   const UntangledCharts untangled =
       untangle_flat_charts(d.mesh.vertices, flat, d.triangles(), d.triangle_labels, kUntangleRounds,

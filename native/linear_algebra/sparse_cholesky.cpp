@@ -146,6 +146,17 @@ void SparseCholesky::analyze_with(const Eigen::SparseMatrix<double>& matrix, con
   }
 }
 
+std::unique_ptr<SparseCholesky> SparseCholesky::copy_analysis() const {
+  if (!backends_->supernodal) return nullptr;
+  std::unique_ptr<SupernodalFactor> analysis = backends_->supernodal->copy_analysis();
+  if (!analysis) return nullptr;
+  auto copy = std::make_unique<SparseCholesky>();
+  copy->rows_ = rows_;
+  copy->ordering_ = ordering_;
+  copy->backends_->supernodal = std::move(analysis);
+  return copy;
+}
+
 void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& matrix) {
   ++factorizations_;
   if (backends_->supernodal) {

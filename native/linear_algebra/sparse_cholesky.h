@@ -50,6 +50,11 @@ class SparseCholesky {
   // and CHOLMOD's factorisations take the matrix as it is instead of a
   // permuted copy each time (a matrix factorised many times).
   void analyze_in_order(const Eigen::SparseMatrix<double>& matrix);
+  // A copy of this analysis, not factorised, when it is CHOLMOD's and
+  // nothing has been factorised since (null otherwise, and for Eigen's
+  // LDLT): its factorize() gives the factor this one's would, bit for bit,
+  // without the analysis (at scale a fifth of a factorisation's time).
+  std::unique_ptr<SparseCholesky> copy_analysis() const;
   // Throws Error when the matrix cannot be factorised.
   void factorize(const Eigen::SparseMatrix<double>& matrix);
   // Several right-hand sides are solved in one pass over the factor, each

@@ -31,6 +31,10 @@ class SupernodalFactor {
   // The ordering the last analysis used, in the same convention (empty
   // before one).
   virtual Eigen::VectorXi ordering() const = 0;
+  // A new factor holding a copy of this analysis, before any factorize()
+  // (null after one, or without an analysis): its factorisation is this
+  // one's would-be factor bit for bit, without analysing again.
+  virtual std::unique_ptr<SupernodalFactor> copy_analysis() const = 0;
   // False when the matrix is not positive definite (silently: CHOLMOD's own
   // warning would go to stdout, where the program writes its report).
   virtual bool factorize(const Eigen::SparseMatrix<double>& matrix) = 0;

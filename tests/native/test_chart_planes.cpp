@@ -259,6 +259,46 @@ TEST(FlattenCharts, RefusesWhatWouldCrushTheModel) {
   EXPECT_GT(flat.collapsed_area, DeformOptions{}.max_collapsed_share);
 }
 
+// At scale the first solve's factors of the charts alone are kept
+// (FlatCharts::charts) for the same charts without collapses later
+// (RobustRun::charts_like), and the charts' analyses made ahead
+// (ChartPlanes::order) are not made again: the same solutions bit for bit
+// as the charts' own factors, with no factorisation for the kept ones.
+// Below that scale nothing is kept.
+TEST(FlattenCharts, AtScaleTheChartsFactorsAndAnalysesAreKept) {
+  for (const auto& [mesh, kept] :
+       {std::pair{test_meshes::uv_sphere(32, 16), false}, std::pair{test_meshes::uv_sphere(500, 200), true}}) {
+    const int n = static_cast<int>(mesh.vertices.rows());
+    const Triangulation t = triangulate(mesh.vertices, mesh.faces);
+    const std::vector<int> labels = test_meshes::nearest_triangle_labels(mesh, t);
+    const QualityMeasure quality(mesh.vertices, t.triangles, labels);
+    const CotangentWeights weights = cotangent_weights(mesh.vertices, t.triangles).cwiseMax(0.0);
+    Laplacian laplacian(n, t.triangles);
+    const double shift = laplacian.assemble(weights, 1e-8);
+    const Eigen::SparseMatrix<double>& L = laplacian.matrix();
+    ChartPlanes ordered(n, t.triangles, labels);
+    ordered.order(L);
+    const FlatCharts flat = flatten_charts(
+        mesh.vertices, mesh.vertices, t.triangles, labels, weights, L, shift, quality,
+        [](const Eigen::MatrixX3d& y) { return y; }, 1.0, 1, &ordered);
+    ASSERT_EQ(flat.charts != nullptr, kept) << n;
+    ChartPlanes own(n, t.triangles, labels);
+    own.factorize(L);
+    const Eigen::MatrixX3d b = L * mesh.vertices;
+    const Vertices expected = own.solve(b);
+    ChartPlanes from_orderings(n, t.triangles, labels);
+    from_orderings.use_orderings(ordered);
+    from_orderings.factorize(L);
+    EXPECT_EQ(from_orderings.solve(b), expected);
+    if (!kept) continue;
+    ChartPlanes shared(n, t.triangles, labels);
+    shared.use_chart_factors(*flat.charts);
+    shared.factorize(L);
+    EXPECT_EQ(shared.factorizations(), 0);
+    EXPECT_EQ(shared.solve(b), expected);
+  }
+}
+
 // Once the robust variant has flattened the charts, every later iteration
 // (the relaxation) is an exact polycube with nothing folded, and relaxing
 // does not raise the edge error; opening collapsed triangles

@@ -5,6 +5,7 @@
 #include <Eigen/SparseCholesky>
 #include <cmath>
 #include <cstdlib>
+#include <memory>
 #include <string>
 #include <thread>
 #include <vector>
@@ -243,6 +244,34 @@ TEST(SparseCholesky, AMatrixInItsEliminationOrderSolvesAsBefore) {
     const Eigen::VectorXd x = to_place.transpose() * second.solve(Eigen::VectorXd(to_place * b));
     EXPECT_LT((a * x - b).norm() / b.norm(), 1e-8) << second.backend();
     if (std::string(first.backend()) == "cholmod-supernodal") EXPECT_TRUE(x == first.solve(b));
+  }
+}
+
+// A copy of CHOLMOD's analysis, factorised, is the factor the analysis
+// itself gives, bit for bit (the flat charts' systems at scale,
+// chart_planes.h); there is none of Eigen's LDLT, nor once factorised.
+TEST(SparseCholesky, ACopiedAnalysisFactorisesBitForBit) {
+  for (const PolygonMesh& mesh : {test_meshes::uv_sphere(32, 16), test_meshes::uv_sphere(400, 150)}) {
+    const SparseMatrix a = shifted_laplacian(mesh);
+    SparseCholesky analysed;
+    analysed.analyze(a);
+    std::unique_ptr<SparseCholesky> copy = analysed.copy_analysis();
+    analysed.factorize(a);
+    const Eigen::MatrixX3d b = Eigen::MatrixX3d::Random(a.rows(), 3);
+    if (std::string(analysed.backend()) != "cholmod-supernodal") {
+      EXPECT_EQ(copy, nullptr);
+      continue;
+    }
+    ASSERT_NE(copy, nullptr);
+    EXPECT_EQ(analysed.copy_analysis(), nullptr);  // factorised: nothing to copy
+    std::unique_ptr<SparseCholesky> second = copy->copy_analysis();  // a copy's copy
+    ASSERT_NE(second, nullptr);
+    for (SparseCholesky* factor : {copy.get(), second.get()}) {
+      factor->factorize(a);
+      EXPECT_STREQ(factor->backend(), "cholmod-supernodal");
+      EXPECT_EQ(factor->ordering().indices(), analysed.ordering().indices());
+      EXPECT_EQ(factor->solve(b), analysed.solve(b));
+    }
   }
 }
 

@@ -46,6 +46,18 @@ class Llt : public Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> {
     analyze_with(matrix, CHOLMOD_NATURAL, nullptr);
     cholmod().postorder = postorder;
   }
+  // Takes a copy of `other`'s symbolic analysis (CHOLMOD's pattern-only
+  // factor); false when it has none or has been factorised since.
+  bool copy_analysis_from(Llt& other) {
+    const cholmod_factor* symbolic = other.m_cholmodFactor;
+    if (!symbolic || symbolic->xtype != CHOLMOD_PATTERN) return false;
+    m_cholmodFactor = cholmod_copy_factor(const_cast<cholmod_factor*>(symbolic), &cholmod());
+    m_isInitialized = true;
+    m_analysisIsOk = m_cholmodFactor != nullptr;
+    m_factorizationIsOk = false;
+    m_info = m_analysisIsOk ? Eigen::Success : Eigen::NumericalIssue;
+    return m_analysisIsOk;
+  }
   Eigen::VectorXi ordering() const {
     if (!m_cholmodFactor || !m_cholmodFactor->Perm) return {};
     return Eigen::Map<const Eigen::VectorXi>(static_cast<const int*>(m_cholmodFactor->Perm),
@@ -98,6 +110,12 @@ class SupernodalCholmod final : public SupernodalFactor {
 
   Eigen::VectorXi ordering() const override { return llt_.ordering(); }
 
+  std::unique_ptr<SupernodalFactor> copy_analysis() const override {
+    auto copy = std::make_unique<SupernodalCholmod>();
+    if (!copy->llt_.copy_analysis_from(llt_)) return nullptr;
+    return copy;
+  }
+
   bool factorize(const Eigen::SparseMatrix<double>& matrix) override {
     const SerialOpenMP serial;
     llt_.factorize(matrix);
@@ -110,7 +128,7 @@ class SupernodalCholmod final : public SupernodalFactor {
   }
 
  private:
-  Llt llt_;
+  mutable Llt llt_;  // copy_analysis() reads it through CHOLMOD's non-const interface
 };
 
 }  // namespace
