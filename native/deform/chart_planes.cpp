@@ -181,23 +181,30 @@ void ChartPlanes::use_orderings(const ChartPlanes& ordered) {
     if (!chart_orderings_[axis]) chart_orderings_[axis] = ordered.chart_orderings_[axis];
 }
 
-void ChartPlanes::factorize(const Eigen::SparseMatrix<double>& laplacian) {
+void ChartPlanes::factorize(const Eigen::SparseMatrix<double>& laplacian) { factorize(laplacian, 3); }
+
+void ChartPlanes::factorize(const Eigen::SparseMatrix<double>& laplacian, int at_most) {
   const int n = static_cast<int>(laplacian.rows());
   std::vector<int> of_root, axes;
   std::array<int, 3> unknowns{};
+  std::array<std::vector<int>, 3> unknown;
   for (int axis = 0; axis < 3; ++axis) {
     if (!changed_[axis]) continue;
-    changed_[axis] = false;
-    ++factorizations_;
     // One unknown per union-find set (serial: finding roots compresses paths).
-    unknowns[axis] = number_unknowns(axis, n, of_root, unknown_[axis]);
-    cholesky_[axis].reset();  // before the new factor: never two of one axis in memory
+    unknowns[axis] = number_unknowns(axis, n, of_root, unknown[axis]);
     axes.push_back(axis);
   }
   // The axes' systems are independent: each analysed and factorised on a
   // thread of its own, the largest first (on two cores the other two follow
   // it on the second).
   std::stable_sort(axes.begin(), axes.end(), [&](int a, int b) { return unknowns[a] > unknowns[b]; });
+  if (static_cast<int>(axes.size()) > at_most) axes.resize(at_most);
+  for (int axis : axes) {
+    changed_[axis] = false;
+    ++factorizations_;
+    unknown_[axis] = std::move(unknown[axis]);
+    cholesky_[axis].reset();  // before the new factor: never two of one axis in memory
+  }
   run_tasks(static_cast<int>(axes.size()), [&](int i) { factorize_axis(laplacian, axes[i], unknowns[axes[i]]); });
 }
 

@@ -45,7 +45,7 @@ FlatCharts flatten_charts(const Vertices& input, const Vertices& current, const 
                           const ChartPlanes* ordered) {
   FlatCharts result;
   result.planes = std::make_unique<ChartPlanes>(static_cast<int>(current.rows()), triangles, triangle_labels);
-  if (ordered) result.planes->use_orderings(*ordered);
+  if (ordered) result.planes->use_chart_factors(*ordered);
   // As-rigid-as-possible targets rather than the paper's: fewer folds to undo
   // and lower edge error (fandisk 0.113 against 0.115, mesh_with_border
   // 0.073 against 0.075).

@@ -61,7 +61,8 @@ constexpr int kFlattenRounds = 30;
 // `laplacian` of `weights` (deformation.h). Gives up once more than
 // `max_collapsed` of the input's area is collapsed; tries at most
 // `max_rounds` solves. With `ordered` (ChartPlanes::order, of the same
-// labels and Laplacian), its orderings spare the first solve's.
+// labels and Laplacian), its orderings spare the first solve's, and the
+// factors it has made spare theirs.
 FlatCharts flatten_charts(const Vertices& input, const Vertices& current, const Triangles& triangles,
                           const std::vector<int>& triangle_labels, const CotangentWeights& weights,
                           const Eigen::SparseMatrix<double>& laplacian, double shift, const QualityMeasure& quality,

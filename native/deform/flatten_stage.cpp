@@ -16,11 +16,13 @@ void flatten_stage(RobustRun& run, int iteration) {
   Stopwatch clock;  // the attempt's own seconds
   run.last_attempt = iteration;
   d.release_factorization();  // restored below unless the charts end flat
+  if (run.ordered_factor.valid()) run.ordered_factor.get();
   const Placement place = [&d](const Eigen::MatrixX3d& solution) { return d.place(solution); };
   FlatCharts flat = flatten_charts(d.mesh.vertices, d.x, d.triangles(), d.triangle_labels, d.weights,
                                    d.laplacian.matrix(), d.shift, d.quality, place, d.options.max_collapsed_share,
                                    kFlattenRounds, run.ordered.get());
-  run.ordered.reset();  // its orderings are the attempt's planes' now
+  if (run.ordered) result.factorizations += run.ordered->factorizations();
+  run.ordered.reset();  // its orderings (and factor) are the attempt's planes' now
   run.chart_factors = std::move(flat.charts);
   result.seconds.factorize += d.phase.lap();  // nearly all of it
   result.factorizations += flat.planes->factorizations();

@@ -1,6 +1,13 @@
 #include "deform/robust_run.h"
 
+#ifdef __linux__
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+#endif
+
 #include "deform/fit_step.h"
+#include "deform/flatten_charts.h"
 #include "deform/flatten_stage.h"
 #include "deform/relabel_stalled_faces.h"
 #include "deform/relax_stage.h"
@@ -46,6 +53,18 @@ RobustRun::RobustRun(Deformation& deformation) : d(deformation) {
         return;
       }
       ordered->order(d.laplacian.matrix());
+      if (d.n >= kKeepChartFactorsFrom) {
+        // At the lowest priority: it takes the time the input's
+        // factorisation and the fitting's back-substitutions leave a core
+        // idle, not the fitting's own (B0 refined 64 times: fitting 1.7 ->
+        // 1.9 s, flattening 5.5 -> 4.4 s).
+        ordered_factor = std::async(std::launch::async, [this] {
+#ifdef __linux__
+          setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), 19);
+#endif
+          ordered->factorize(d.laplacian.matrix(), 1);
+        });
+      }
       state = d.quality.face_states(d.x);
       first_fit_rhs = fitted_rhs(d.mesh.vertices, d.x, d.triangles(), d.triangle_labels, d.weights, d.shift);
     });

@@ -12,6 +12,7 @@
 // Each stage is a function of its own, callable alone (its tests do).
 #pragma once
 
+#include <future>
 #include <memory>
 #include <vector>
 
@@ -60,6 +61,11 @@ struct RobustRun {
   // input's factorisation, for the first flattening attempt; and, made
   // there too, the first fitting step's right-hand side.
   std::unique_ptr<ChartPlanes> ordered;
+  // At scale, the largest of those charts' systems factorised on a thread
+  // of its own while the fitting runs, whose back-substitutions leave the
+  // second core idle: the first flattening takes its factor (and waits for
+  // it). Joined before `ordered` goes.
+  std::future<void> ordered_factor;
   Eigen::MatrixX3d first_fit_rhs;
   bool relaxed = false, uncollapsed = false, untangle_tried = false;
   int flatten_attempts = 0, last_attempt = 0;

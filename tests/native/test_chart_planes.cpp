@@ -264,7 +264,8 @@ TEST(FlattenCharts, RefusesWhatWouldCrushTheModel) {
 // (RobustRun::charts_like), and the charts' analyses made ahead
 // (ChartPlanes::order) are not made again: the same solutions bit for bit
 // as the charts' own factors, with no factorisation for the kept ones.
-// Below that scale nothing is kept.
+// Below that scale nothing is kept. A factor made ahead (at most one axis
+// of ChartPlanes::factorize) is the flattening's too.
 TEST(FlattenCharts, AtScaleTheChartsFactorsAndAnalysesAreKept) {
   for (const auto& [mesh, kept] :
        {std::pair{test_meshes::uv_sphere(32, 16), false}, std::pair{test_meshes::uv_sphere(500, 200), true}}) {
@@ -278,17 +279,21 @@ TEST(FlattenCharts, AtScaleTheChartsFactorsAndAnalysesAreKept) {
     const Eigen::SparseMatrix<double>& L = laplacian.matrix();
     ChartPlanes ordered(n, t.triangles, labels);
     ordered.order(L);
+    ChartPlanes from_orderings(n, t.triangles, labels);
+    from_orderings.use_orderings(ordered);
+    ordered.factorize(L, 1);  // the largest system only, as beside the fitting (RobustRun)
+    EXPECT_EQ(ordered.factorizations(), 1);
     const FlatCharts flat = flatten_charts(
         mesh.vertices, mesh.vertices, t.triangles, labels, weights, L, shift, quality,
         [](const Eigen::MatrixX3d& y) { return y; }, 1.0, 1, &ordered);
+    EXPECT_EQ(flat.planes->factorizations(), 2);  // the third is ordered's
     ASSERT_EQ(flat.charts != nullptr, kept) << n;
     ChartPlanes own(n, t.triangles, labels);
     own.factorize(L);
     const Eigen::MatrixX3d b = L * mesh.vertices;
     const Vertices expected = own.solve(b);
-    ChartPlanes from_orderings(n, t.triangles, labels);
-    from_orderings.use_orderings(ordered);
     from_orderings.factorize(L);
+    EXPECT_EQ(from_orderings.factorizations(), 3);
     EXPECT_EQ(from_orderings.solve(b), expected);
     if (!kept) continue;
     ChartPlanes shared(n, t.triangles, labels);
