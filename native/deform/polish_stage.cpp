@@ -6,6 +6,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -494,13 +495,25 @@ int polish_stage(RobustRun& run, std::unique_ptr<ChartPlanes> factored) {
     factored.reset();  // its other factors: not in memory beside new ones
   }
   planes.factorize(d.laplacian.matrix());
-  const BlendIndex index(d, planes);
-  const Figures start = d.quality.measure(d.x, run.state);
-  const AreaBounds bounds = area_bounds(d, run.state);
-  const LeftOut left_out = left_out_of(run);
-  const std::vector<double> log_lengths = log_lengths_of(d.quality);
+  // What the steps need, independent parts of it on a thread each.
+  std::optional<BlendIndex> index;
+  Figures start;
+  AreaBounds bounds;
+  LeftOut left_out;
+  std::vector<double> log_lengths;
+  std::vector<char> held;
+  run_tasks(2, [&](int i) {
+    if (i == 0) {
+      index.emplace(d, planes);
+      start = d.quality.measure(d.x, run.state);
+      bounds = area_bounds(d, run.state);
+      return;
+    }
+    left_out = left_out_of(run);
+    log_lengths = log_lengths_of(d.quality);
+    held = open_boundary_vertices(d.n, d.triangles());
+  });
   const std::vector<char>& collapsed = run.state.collapsed;
-  const std::vector<char> held = open_boundary_vertices(d.n, d.triangles());
   double step_length = 0.0;
   std::vector<double> sums;
   std::array<Vertices, 2> gradients;
@@ -514,9 +527,13 @@ int polish_stage(RobustRun& run, std::unique_ptr<ChartPlanes> factored) {
   // No smooth errors to lower (no area along the axes at all, or an edge the
   // run squeezed to nothing besides its collapsed ones): nothing to polish.
   if (!std::isfinite(errors.edge + errors.area)) return 0;
-  figure_errors(d, d.x, errors);
+  run_tasks(2, [&](int i) {
+    if (i == 0)
+      figure_errors(d, d.x, errors);
+    else
+      smooth_gradients(d, d.x, slopes, gradients);
+  });
   Errors best = errors;
-  smooth_gradients(d, d.x, slopes, gradients);
   slopes = Slopes();  // each trial has its own (Trial)
   const Vertices start_x = d.x;
   Vertices best_x = d.x;
@@ -542,7 +559,7 @@ int polish_stage(RobustRun& run, std::unique_ptr<ChartPlanes> factored) {
     // neither smooth error grows.
     auto trial = [&](double length) {
       Trial t;
-      t.next = controlled_blend(d, planes, index, d.x + length * direction, collapsed, bounds, held, areas_now);
+      t.next = controlled_blend(d, planes, *index, d.x + length * direction, collapsed, bounds, held, areas_now);
       t.errors = smooth_errors(d, left_out, log_lengths, t.next, &t.slopes, &errors);
       return t;
     };
