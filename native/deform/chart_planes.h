@@ -47,9 +47,9 @@ class ChartPlanes {
   // systems are independent: each on a thread of its own, the same factors
   // bit for bit as on one. Throws Error when a factorisation fails.
   void factorize(const Eigen::SparseMatrix<double>& laplacian);
-  // The same for at most `axes` of the axes to redo, the largest systems
-  // first: the others stay for the next factorize().
-  void factorize(const Eigen::SparseMatrix<double>& laplacian, int axes);
+  // The same for at most `at_most` of the axes to redo, the largest
+  // systems first: the others stay for the next factorize().
+  void factorize(const Eigen::SparseMatrix<double>& laplacian, int at_most);
   int factorizations() const { return factorizations_; }
   // Calls of solve() (three back-substitutions each, one per axis).
   int solves() const { return solves_; }

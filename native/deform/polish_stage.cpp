@@ -395,6 +395,18 @@ void smooth_gradients(const Deformation& d, const Vertices& x, const Slopes& slo
   }
 }
 
+// The figures' errors into `errors` and the smooth errors' gradients, both
+// at `x` (of which `errors` and `slopes` are): independent, on a thread each.
+void figures_and_gradients(const Deformation& d, const Vertices& x, Errors& errors, const Slopes& slopes,
+                           std::array<Vertices, 2>& gradients) {
+  run_tasks(2, [&](int i) {
+    if (i == 0)
+      figure_errors(d, x, errors);
+    else
+      smooth_gradients(d, x, slopes, gradients);
+  });
+}
+
 // Vertices on an edge of one triangle: held where they are. An open
 // boundary is where the user's mesh ends or continues, and the remesher
 // lays it along grid lines (quad_remesh.h); moved by the polish, the
@@ -527,12 +539,7 @@ int polish_stage(RobustRun& run, std::unique_ptr<ChartPlanes> factored) {
   // No smooth errors to lower (no area along the axes at all, or an edge the
   // run squeezed to nothing besides its collapsed ones): nothing to polish.
   if (!std::isfinite(errors.edge + errors.area)) return 0;
-  run_tasks(2, [&](int i) {
-    if (i == 0)
-      figure_errors(d, d.x, errors);
-    else
-      smooth_gradients(d, d.x, slopes, gradients);
-  });
+  figures_and_gradients(d, d.x, errors, slopes, gradients);
   Errors best = errors;
   slopes = Slopes();  // each trial has its own (Trial)
   const Vertices start_x = d.x;
@@ -584,13 +591,7 @@ int polish_stage(RobustRun& run, std::unique_ptr<ChartPlanes> factored) {
         step_length *= 0.5;
         continue;
       }
-      // Independent: the figures on one thread, the gradients on another.
-      run_tasks(2, [&](int i) {
-        if (i == 0)
-          figure_errors(d, t.next, t.errors);
-        else
-          smooth_gradients(d, t.next, t.slopes, gradients);
-      });
+      figures_and_gradients(d, t.next, t.errors, t.slopes, gradients);
       // Placing moves each component as a whole: the errors and their gradients stay.
       d.x = place_components(t.next, t.next, d.parts, d.centroids);
       errors = t.errors;

@@ -48,10 +48,10 @@ class Llt : public Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> {
   }
   // Takes a copy of `other`'s symbolic analysis (CHOLMOD's pattern-only
   // factor); false when it has none or has been factorised since.
-  bool copy_analysis_from(Llt& other) {
-    const cholmod_factor* symbolic = other.m_cholmodFactor;
+  bool copy_analysis_from(const Llt& other) {
+    cholmod_factor* const symbolic = other.m_cholmodFactor;  // cholmod_copy_factor only reads it
     if (!symbolic || symbolic->xtype != CHOLMOD_PATTERN) return false;
-    m_cholmodFactor = cholmod_copy_factor(const_cast<cholmod_factor*>(symbolic), &cholmod());
+    m_cholmodFactor = cholmod_copy_factor(symbolic, &cholmod());
     m_isInitialized = true;
     m_analysisIsOk = m_cholmodFactor != nullptr;
     m_factorizationIsOk = false;
@@ -128,7 +128,7 @@ class SupernodalCholmod final : public SupernodalFactor {
   }
 
  private:
-  mutable Llt llt_;  // copy_analysis() reads it through CHOLMOD's non-const interface
+  Llt llt_;
 };
 
 }  // namespace
