@@ -50,6 +50,31 @@ struct BlendIndex {
   }
 };
 
+// Per triangle, a bit per axis in which its corners share one unknown (so
+// one share), stand at one value and move in one direction (a chart's plane,
+// inside the chart): whatever the step's length and share, that coordinate's
+// differences stay exactly zero, so moving it changes neither the area nor
+// the orientation. A halved plane moves every vertex of its chart, but only
+// the triangles across the chart's edge change. Made once a descent step, for
+// all its trials.
+std::vector<char> rigid_axes(const Deformation& d, const ChartPlanes& planes, const Vertices& direction) {
+  const Triangles& triangles = d.triangles();
+  const Eigen::Index count = triangles.rows();
+  std::vector<char> rigid(count, 0);
+  run_in_parts(count, loop_parts(count), [&](long begin, long end) {
+    for (Eigen::Index t = begin; t < end; ++t)
+      for (int axis = 0; axis < 3; ++axis) {
+        const int a = triangles(t, 0), b = triangles(t, 1), c = triangles(t, 2);
+        const std::vector<int>& unknown = planes.unknowns(axis);
+        if (unknown[a] == unknown[b] && unknown[a] == unknown[c] && d.x(a, axis) == d.x(b, axis) &&
+            d.x(a, axis) == d.x(c, axis) && direction(a, axis) == direction(b, axis) &&
+            direction(a, axis) == direction(c, axis))
+          rigid[t] |= static_cast<char>(1 << axis);
+      }
+  });
+  return rigid;
+}
+
 // From the run's positions (whose triangle areas are `areas_now`) towards
 // `target` (flat on the same charts), every
 // unknown of `planes` with its own share of the step (none for the `held`
@@ -68,8 +93,9 @@ struct BlendIndex {
 // round put it, with the same flags (the same result bit for bit as a
 // measure of the whole mesh every round).
 Vertices controlled_blend(const Deformation& d, const ChartPlanes& planes, const BlendIndex& index,
-                          Vertices target, const std::vector<char>& collapsed_before, const AreaBounds& bounds,
-                          const std::vector<char>& held, const std::vector<double>& areas_now) {
+                          const std::vector<char>& rigid, Vertices target, const std::vector<char>& collapsed_before,
+                          const AreaBounds& bounds, const std::vector<char>& held,
+                          const std::vector<double>& areas_now) {
   const Triangles& triangles = d.triangles();
   const Eigen::Index count = triangles.rows();
   // In the target's memory: a vertex's worth less at the polish's peak.
@@ -108,23 +134,6 @@ Vertices controlled_blend(const Deformation& d, const ChartPlanes& planes, const
   // triangle measured again this round is flagged in `seen`.
   std::vector<int> blocking, against, still, moved, moved_vertices, list;
   std::vector<char> seen(count, 0), vertex_moved(d.n, 0);  // per vertex, a bit per axis it moved in
-  // Per triangle, a bit per axis in which its corners share one unknown
-  // (so one share), stand at one value and step by one amount (a chart's
-  // plane, inside the chart): that coordinate's differences stay exactly
-  // zero, so moving it changes neither the area nor the orientation. A
-  // halved plane moves every vertex of its chart, but only the triangles
-  // across the chart's edge change.
-  std::vector<char> rigid(count, 0);
-  run_in_parts(count, loop_parts(count), [&](long begin, long end) {
-    for (Eigen::Index t = begin; t < end; ++t)
-      for (int axis = 0; axis < 3; ++axis) {
-        const int a = triangles(t, 0), b = triangles(t, 1), c = triangles(t, 2);
-        const std::vector<int>& unknown = planes.unknowns(axis);
-        if (unknown[a] == unknown[b] && unknown[a] == unknown[c] && d.x(a, axis) == d.x(b, axis) &&
-            d.x(a, axis) == d.x(c, axis) && step(a, axis) == step(b, axis) && step(a, axis) == step(c, axis))
-          rigid[t] |= static_cast<char>(1 << axis);
-      }
-  });
   for (Eigen::Index t = 0; t < count; ++t) {
     if (measured.along[t] < 0.0) against.push_back(static_cast<int>(t));
     if (blocks(t)) blocking.push_back(static_cast<int>(t));
@@ -213,7 +222,8 @@ constexpr double kSmoothing = 1e-3;
 
 double rho(double u) { return std::sqrt(u * u + kSmoothing * kSmoothing); }  // its slope: u / rho(u)
 
-// The smooth errors, and the figures' own (quality.h), measured in the same pass.
+// The smooth errors, and the figures' own (quality.h), measured in the same
+// pass.
 struct Errors {
   static constexpr double kNone = std::numeric_limits<double>::infinity();
   double edge = kNone, area = kNone, figure_edge = kNone, figure_area = kNone;
@@ -350,7 +360,8 @@ void figure_errors(const Deformation& d, const Vertices& x, Errors& errors) {
   errors.figure_area = measured_triangles > 0 ? figure_area / measured_triangles : 0.0;
 }
 
-// A step tried: the blend and its smooth errors (and what their gradients need).
+// A step tried: the blend and its smooth errors (and what their gradients
+// need).
 struct Trial {
   Vertices next;
   Errors errors;
@@ -530,7 +541,8 @@ int polish_stage(RobustRun& run, std::unique_ptr<ChartPlanes> factored) {
   std::vector<double> sums;
   std::array<Vertices, 2> gradients;
   Slopes slopes;
-  // The triangles' areas where the step starts: the run's, until a step moves them.
+  // The triangles' areas where the step starts: the run's, until a step moves
+  // them.
   std::vector<double> areas_now = run.state.area;
   std::vector<char> unused_collapsed, unused_flipped;
   // Steps follow the smooth errors; what is returned is the state, after
@@ -548,7 +560,8 @@ int polish_stage(RobustRun& run, std::unique_ptr<ChartPlanes> factored) {
   const Eigen::Index count = d.triangles().rows();
   const bool paired_trials = count >= kPairedTrialsFrom && task_threads(2) > 1;
   for (; steps < kPolishRounds; ++steps) {
-    // A step costs a second at a million triangles; a stop keeps the best so far.
+    // A step costs a second at a million triangles; a stop keeps the best so
+    // far.
     if (d.options.stop_requested && d.options.stop_requested()) break;
     const double sum = errors.edge + errors.area;
     sums.push_back(sum);
@@ -562,11 +575,12 @@ int polish_stage(RobustRun& run, std::unique_ptr<ChartPlanes> factored) {
     const double largest = direction.rowwise().norm().maxCoeff();
     if (!(largest > 0.0)) break;
     if (step_length == 0.0) step_length = kPolishFirstStep * run.diagonal / largest;
+    const std::vector<char> rigid = rigid_axes(d, planes, direction);
     // The longest step, halving from twice the last one kept, along which
     // neither smooth error grows.
     auto trial = [&](double length) {
       Trial t;
-      t.next = controlled_blend(d, planes, *index, d.x + length * direction, collapsed, bounds, held, areas_now);
+      t.next = controlled_blend(d, planes, *index, rigid, d.x + length * direction, collapsed, bounds, held, areas_now);
       t.errors = smooth_errors(d, left_out, log_lengths, t.next, &t.slopes, &errors);
       return t;
     };
@@ -592,7 +606,8 @@ int polish_stage(RobustRun& run, std::unique_ptr<ChartPlanes> factored) {
         continue;
       }
       figures_and_gradients(d, t.next, t.errors, t.slopes, gradients);
-      // Placing moves each component as a whole: the errors and their gradients stay.
+      // Placing moves each component as a whole: the errors and their gradients
+      // stay.
       d.x = place_components(t.next, t.next, d.parts, d.centroids);
       errors = t.errors;
       moved = true;
