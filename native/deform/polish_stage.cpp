@@ -222,8 +222,7 @@ constexpr double kSmoothing = 1e-3;
 
 double rho(double u) { return std::sqrt(u * u + kSmoothing * kSmoothing); }  // its slope: u / rho(u)
 
-// The smooth errors, and the figures' own (quality.h), measured in the same
-// pass.
+// The smooth errors, and the figures' own (quality.h), measured in the same pass.
 struct Errors {
   static constexpr double kNone = std::numeric_limits<double>::infinity();
   double edge = kNone, area = kNone, figure_edge = kNone, figure_area = kNone;
@@ -360,8 +359,7 @@ void figure_errors(const Deformation& d, const Vertices& x, Errors& errors) {
   errors.figure_area = measured_triangles > 0 ? figure_area / measured_triangles : 0.0;
 }
 
-// A step tried: the blend and its smooth errors (and what their gradients
-// need).
+// A step tried: the blend and its smooth errors (and what their gradients need).
 struct Trial {
   Vertices next;
   Errors errors;
@@ -541,8 +539,7 @@ int polish_stage(RobustRun& run, std::unique_ptr<ChartPlanes> factored) {
   std::vector<double> sums;
   std::array<Vertices, 2> gradients;
   Slopes slopes;
-  // The triangles' areas where the step starts: the run's, until a step moves
-  // them.
+  // The triangles' areas where the step starts: the run's, until a step moves them.
   std::vector<double> areas_now = run.state.area;
   std::vector<char> unused_collapsed, unused_flipped;
   // Steps follow the smooth errors; what is returned is the state, after
@@ -560,8 +557,7 @@ int polish_stage(RobustRun& run, std::unique_ptr<ChartPlanes> factored) {
   const Eigen::Index count = d.triangles().rows();
   const bool paired_trials = count >= kPairedTrialsFrom && task_threads(2) > 1;
   for (; steps < kPolishRounds; ++steps) {
-    // A step costs a second at a million triangles; a stop keeps the best so
-    // far.
+    // A step costs a second at a million triangles; a stop keeps the best so far.
     if (d.options.stop_requested && d.options.stop_requested()) break;
     const double sum = errors.edge + errors.area;
     sums.push_back(sum);
