@@ -1,5 +1,6 @@
 #include "deform/chart_planes.h"
 
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <type_traits>
 #include <utility>
@@ -8,6 +9,37 @@
 #include "linear_algebra/sparse_cholesky.h"
 
 namespace polycube {
+
+// A system whose unknowns each join one or more of its charts' (a few
+// collapses): the minimiser of x^T A x / 2 - b^T x over the charts'
+// unknowns with the joined ones held equal, C x = 0 (a row e_a - e_b per
+// join), is that of the system's own P^T L P. With W = A^-1 C^T and the
+// Schur complement S = C W (k x k for k joins): x = y - W S^-1 C y, y =
+// A^-1 b, for k back-substitutions once instead of a factorisation.
+struct ChartPlanes::Merged {
+  std::vector<int> representative;  // per unknown of the system: one of the charts' unknowns it joins
+  std::vector<std::pair<int, int>> joins;
+  Eigen::MatrixXd correction;  // W
+  Eigen::LDLT<Eigen::MatrixXd> schur;
+
+  // From y = A^-1 b (a column per right-hand side) to x.
+  template <class Columns>
+  void hold_joins(Columns& y) const {
+    Eigen::MatrixXd apart(joins.size(), y.cols());
+    for (size_t j = 0; j < joins.size(); ++j) apart.row(j) = y.row(joins[j].first) - y.row(joins[j].second);
+    y -= correction * schur.solve(apart);
+  }
+};
+
+namespace {
+
+// Merging beyond this many joins costs more back-substitutions than a
+// factorisation saves (B0: a factorisation is about 30 of its
+// back-substitutions); at scale, where a joined ordering makes a
+// factorisation cheap, systems are factorised as they were.
+constexpr int kMergedJoinsAtMost = 16;
+
+}  // namespace
 
 ChartPlanes::ChartPlanes(int vertex_count, const Triangles& triangles, const std::vector<int>& triangle_labels)
     : triangles_(triangles) {
@@ -28,10 +60,17 @@ void ChartPlanes::join(int axis, int a, int b) {
 
 void ChartPlanes::use_chart_factors(const ChartPlanes& same_charts) {
   chart_orderings_ = same_charts.chart_orderings_;
+  std::vector<int> of_root, unknown;
   for (int axis = 0; axis < 3; ++axis) {
-    if (!same_charts.charts_only_[axis] || same_charts.changed_[axis] || !same_charts.cholesky_[axis]) continue;
-    cholesky_[axis] = same_charts.cholesky_[axis];
-    unknown_[axis] = same_charts.unknown_[axis];
+    const std::shared_ptr<const ChartFactor>& charts = same_charts.chart_factor_[axis];
+    if (!charts || !charts_only_[axis]) continue;
+    // A chart factor shared with planes of other labels (share_factors) is not this one's.
+    number_unknowns(axis, sets_[axis].size(), of_root, unknown);
+    if (unknown != charts->unknown) continue;
+    chart_factor_[axis] = charts;
+    cholesky_[axis] = charts->cholesky;
+    unknown_[axis] = charts->unknown;
+    merged_[axis].reset();
     changed_[axis] = false;
   }
 }
@@ -40,6 +79,8 @@ void ChartPlanes::share_factors(const ChartPlanes& other) {
   std::vector<int> of_root, unknown;
   for (int axis = 0; axis < 3; ++axis) {
     if (!chart_orderings_[axis]) chart_orderings_[axis] = other.chart_orderings_[axis];
+    // To merge onto, where this one collapsed what `other` did not.
+    if (!chart_factor_[axis]) chart_factor_[axis] = other.chart_factor_[axis];
     if (other.changed_[axis] || !other.cholesky_[axis]) continue;
     const int n = sets_[axis].size();
     if (n != static_cast<int>(other.unknown_[axis].size())) continue;
@@ -47,6 +88,7 @@ void ChartPlanes::share_factors(const ChartPlanes& other) {
     if (unknown != other.unknown_[axis]) continue;
     unknown_[axis] = std::move(unknown);
     cholesky_[axis] = other.cholesky_[axis];
+    merged_[axis] = other.merged_[axis];
     changed_[axis] = false;
   }
 }
@@ -66,6 +108,8 @@ int ChartPlanes::number_unknowns(int axis, int n, std::vector<int>& of_root, std
 void ChartPlanes::release() {
   for (int axis = 0; axis < 3; ++axis) {
     cholesky_[axis].reset();
+    chart_factor_[axis].reset();
+    merged_[axis].reset();
     changed_[axis] = true;
   }
 }
@@ -183,7 +227,7 @@ void ChartPlanes::use_orderings(const ChartPlanes& ordered) {
 
 void ChartPlanes::factorize(const Eigen::SparseMatrix<double>& laplacian) { factorize(laplacian, 3); }
 
-void ChartPlanes::factorize(const Eigen::SparseMatrix<double>& laplacian, int at_most) {
+void ChartPlanes::factorize(const Eigen::SparseMatrix<double>& laplacian, int at_most, bool merge) {
   const int n = static_cast<int>(laplacian.rows());
   std::vector<int> of_root, axes;
   std::array<int, 3> unknowns{};
@@ -201,14 +245,69 @@ void ChartPlanes::factorize(const Eigen::SparseMatrix<double>& laplacian, int at
   if (static_cast<int>(axes.size()) > at_most) axes.resize(at_most);
   for (int axis : axes) {
     changed_[axis] = false;
-    ++factorizations_;
     unknown_[axis] = std::move(unknown[axis]);
     cholesky_[axis].reset();  // before the new factor: never two of one axis in memory
+    merged_[axis].reset();
   }
-  run_tasks(static_cast<int>(axes.size()), [&](int i) { factorize_axis(laplacian, axes[i], unknowns[axes[i]]); });
+  std::array<char, 3> factorized{};
+  run_tasks(static_cast<int>(axes.size()),
+            [&](int i) { factorized[i] = factorize_axis(laplacian, axes[i], unknowns[axes[i]], merge); });
+  for (char f : factorized) factorizations_ += f;
 }
 
-void ChartPlanes::factorize_axis(const Eigen::SparseMatrix<double>& laplacian, int axis, int m) {
+std::shared_ptr<const ChartPlanes::Merged> ChartPlanes::merged_onto_charts(int axis, int m) const {
+  const ChartFactor* charts = chart_factor_[axis].get();
+  if (!charts) return nullptr;
+  const SparseCholesky& factor = *charts->cholesky;
+  const int chart_unknowns = static_cast<int>(factor.rows());
+  const std::vector<int>& unknown = unknown_[axis];
+  const int joins = chart_unknowns - m;
+  if (chart_unknowns >= SparseCholesky::kSupernodalThreshold || joins < 0 || joins > kMergedJoinsAtMost ||
+      charts->unknown.size() != unknown.size())
+    return nullptr;
+  // Each of the charts' unknowns into the one of this system it joins.
+  std::vector<int> into(chart_unknowns, -1);
+  for (size_t v = 0; v < unknown.size(); ++v) {
+    int& joined = into[charts->unknown[v]];
+    if (joined >= 0 && joined != unknown[v]) return nullptr;  // split, not joined
+    joined = unknown[v];
+  }
+  auto merged = std::make_shared<Merged>();
+  merged->representative.assign(m, -1);
+  for (int c = 0; c < chart_unknowns; ++c) {
+    if (into[c] < 0) return nullptr;
+    int& first = merged->representative[into[c]];
+    if (first < 0)
+      first = c;
+    else
+      merged->joins.emplace_back(first, c);
+  }
+  if (static_cast<int>(merged->joins.size()) != joins) return nullptr;
+  merged->correction.resize(chart_unknowns, joins);
+  Eigen::VectorXd c = Eigen::VectorXd::Zero(chart_unknowns);
+  for (int j = 0; j < joins; ++j) {
+    const auto [a, b] = merged->joins[j];
+    c[a] = 1.0, c[b] = -1.0;
+    merged->correction.col(j) = factor.solve(c);
+    c[a] = c[b] = 0.0;
+  }
+  Eigen::MatrixXd schur(joins, joins);
+  for (int j = 0; j < joins; ++j)
+    schur.row(j) = merged->correction.row(merged->joins[j].first) - merged->correction.row(merged->joins[j].second);
+  merged->schur.compute(schur);
+  if (merged->schur.info() != Eigen::Success) return nullptr;
+  return merged;
+}
+
+bool ChartPlanes::factorize_axis(const Eigen::SparseMatrix<double>& laplacian, int axis, int m, bool merge) {
+  if (!charts_only_[axis]) {
+    if (std::shared_ptr<const Merged> merged = merge ? merged_onto_charts(axis, m) : nullptr) {
+      cholesky_[axis] = chart_factor_[axis]->cholesky;
+      merged_[axis] = std::move(merged);
+      return false;
+    }
+  }
+  chart_factor_[axis].reset();  // before the new factor: never two of one axis in memory
   const std::vector<int>& unknown = unknown_[axis];
   const Eigen::SparseMatrix<double> reduced = reduced_matrix(laplacian, unknown, m);
   // The charts' own ordering when known; at scale, one joined from it for
@@ -233,6 +332,9 @@ void ChartPlanes::factorize_axis(const Eigen::SparseMatrix<double>& laplacian, i
   }
   cholesky->factorize(reduced);
   cholesky_[axis] = std::move(cholesky);
+  if (charts_only_[axis])
+    chart_factor_[axis] = std::make_shared<const ChartFactor>(ChartFactor{cholesky_[axis], unknown});
+  return true;
 }
 
 template <int K>
@@ -247,13 +349,22 @@ std::array<Vertices, K> ChartPlanes::solve_together(const std::array<const Eigen
   // Independent back-substitutions, each axis's on a thread of its own.
   run_tasks(beside ? 4 : 3, [&](int axis) {
     if (axis == 3) return beside();
-    const std::vector<int>& unknown = unknown_[axis];
+    const Merged* merged = merged_[axis].get();
+    const std::vector<int>& unknown = merged ? chart_factor_[axis]->unknown : unknown_[axis];
     Columns b = Columns::Zero(cholesky_[axis]->rows(), K);
     for (Eigen::Index v = 0; v < n; ++v)
       for (int k = 0; k < K; ++k) b(unknown[v], k) += (*rhs[k])(v, axis);
-    const Columns y = cholesky_[axis]->solve(b);
+    Columns y = cholesky_[axis]->solve(b);
+    if (!merged) {
+      for (Eigen::Index v = 0; v < n; ++v)
+        for (int k = 0; k < K; ++k) x[k](v, axis) = y(unknown[v], k);
+      return;
+    }
+    // Joined vertices take one value: collapsed exactly, not to rounding.
+    merged->hold_joins(y);
+    const std::vector<int>& joined = unknown_[axis];
     for (Eigen::Index v = 0; v < n; ++v)
-      for (int k = 0; k < K; ++k) x[k](v, axis) = y(unknown[v], k);
+      for (int k = 0; k < K; ++k) x[k](v, axis) = y(merged->representative[joined[v]], k);
   });
   return x;
 }

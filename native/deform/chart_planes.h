@@ -48,8 +48,11 @@ class ChartPlanes {
   // bit for bit as on one. Throws Error when a factorisation fails.
   void factorize(const Eigen::SparseMatrix<double>& laplacian);
   // The same for at most `at_most` of the axes to redo, the largest
-  // systems first: the others stay for the next factorize().
-  void factorize(const Eigen::SparseMatrix<double>& laplacian, int at_most);
+  // systems first: the others stay for the next factorize(). A system
+  // with few collapses is solved on its charts' factor when known, merged
+  // (below), unless `merge` is false: factorised as it is, the same
+  // factor bit for bit as from the start.
+  void factorize(const Eigen::SparseMatrix<double>& laplacian, int at_most, bool merge = true);
   int factorizations() const { return factorizations_; }
   // Calls of solve() (three back-substitutions each, one per axis).
   int solves() const { return solves_; }
@@ -109,8 +112,9 @@ class ChartPlanes {
  private:
   int root(int axis, int v) const;
   // The analysis and factorisation of one axis's system of `m` unknowns
-  // (unknown_[axis] numbered): touches only that axis's members.
-  void factorize_axis(const Eigen::SparseMatrix<double>& laplacian, int axis, int m);
+  // (unknown_[axis] numbered), or its merge onto the chart factor; touches
+  // only that axis's members. Returns whether it factorised.
+  bool factorize_axis(const Eigen::SparseMatrix<double>& laplacian, int axis, int m, bool merge);
   void join(int axis, int a, int b);
   // Per vertex, its set's unknown of `axis`: the sets numbered in the order
   // of their first vertex, so equal partitions give equal unknowns. Returns
@@ -126,6 +130,22 @@ class ChartPlanes {
   std::array<std::vector<int>, 3> unknown_;  // per axis and vertex: its unknown
   std::array<std::shared_ptr<const SparseCholesky>, 3> cholesky_;
   std::array<bool, 3> changed_ = {true, true, true};
+  // Per axis, the factor of its charts' own system (no collapses) and each
+  // vertex's unknown in it, while this one solves on it or may: a system
+  // with a few collapses is then solved on that factor, its joins held by a
+  // small dense Schur complement (Merged), instead of factorised again. The
+  // same minimiser, to rounding (B0: four of its eight factorisations).
+  struct ChartFactor {
+    std::shared_ptr<const SparseCholesky> cholesky;
+    std::vector<int> unknown;
+  };
+  std::array<std::shared_ptr<const ChartFactor>, 3> chart_factor_;
+  struct Merged;
+  std::array<std::shared_ptr<const Merged>, 3> merged_;  // null: the axis has its own factor
+  // The merge of `axis`'s system of `m` unknowns onto its chart factor, or
+  // null when that is not a finer system of the same charts or needs more
+  // joins than pays (chart_planes.cpp).
+  std::shared_ptr<const Merged> merged_onto_charts(int axis, int m) const;
   // Per axis: nothing collapsed since the construction (the charts alone),
   // and the ordering of the charts' system once known, with each vertex's
   // unknown in it: the systems with collapses, whose unknowns join the
