@@ -25,6 +25,7 @@ struct ChartPlanes::Merged {
   // From y = A^-1 b (a column per right-hand side) to x.
   template <class Columns>
   void hold_joins(Columns& y) const {
+    if (joins.empty()) return;
     Eigen::MatrixXd apart(joins.size(), y.cols());
     for (size_t j = 0; j < joins.size(); ++j) apart.row(j) = y.row(joins[j].first) - y.row(joins[j].second);
     y -= correction * schur.solve(apart);
@@ -294,8 +295,8 @@ std::shared_ptr<const ChartPlanes::Merged> ChartPlanes::merged_onto_charts(int a
   Eigen::MatrixXd schur(joins, joins);
   for (int j = 0; j < joins; ++j)
     schur.row(j) = merged->correction.row(merged->joins[j].first) - merged->correction.row(merged->joins[j].second);
-  merged->schur.compute(schur);
-  if (merged->schur.info() != Eigen::Success) return nullptr;
+  if (joins > 0) merged->schur.compute(schur);
+  if (joins > 0 && merged->schur.info() != Eigen::Success) return nullptr;
   return merged;
 }
 
