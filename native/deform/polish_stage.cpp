@@ -91,11 +91,13 @@ std::vector<char> rigid_axes(const Deformation& d, const ChartPlanes& planes, co
 // area points against their axis (the only ones the scale, which every
 // move changes, can turn over); the rest of the mesh stands where the last
 // round put it, with the same flags (the same result bit for bit as a
-// measure of the whole mesh every round).
+// measure of the whole mesh every round). With `signed_areas`, the blend's
+// triangle areas signed along their axes, bit for bit as axis_areas() gives
+// them, when it returns the blend: its errors need not measure them again.
 Vertices controlled_blend(const Deformation& d, const ChartPlanes& planes, const BlendIndex& index,
                           const std::vector<char>& rigid, Vertices target, const std::vector<char>& collapsed_before,
-                          const AreaBounds& bounds, const std::vector<char>& held,
-                          const std::vector<double>& areas_now) {
+                          const AreaBounds& bounds, const std::vector<char>& held, const std::vector<double>& areas_now,
+                          std::vector<double>* signed_areas = nullptr) {
   const Triangles& triangles = d.triangles();
   const Eigen::Index count = triangles.rows();
   // In the target's memory: a vertex's worth less at the polish's peak.
@@ -141,7 +143,14 @@ Vertices controlled_blend(const Deformation& d, const ChartPlanes& planes, const
   const int max_rounds = 4 * (kMaxHalvings + 1);
   std::array<std::vector<int>, 3> halved;
   for (int round = 1;; ++round) {
-    if (blocking.empty()) return next;
+    if (blocking.empty()) {
+      if (signed_areas) {
+        // Half the doubled normal's component along the axis, as axis_areas() takes it.
+        *signed_areas = std::move(measured.along);
+        for (double& a : *signed_areas) a *= 0.5;
+      }
+      return next;
+    }
     if (round == max_rounds) return d.x;
     for (int t : blocking)
       for (int k = 0; k < 3; ++k)
@@ -284,14 +293,20 @@ double axis_areas(const Deformation& d, const Vertices& x, std::vector<double>& 
 // it (Errors::better_than) are not finished: their edge error alone already
 // exceeds it (half of B0's trials are not taken). The figures' errors are
 // left out: figure_errors() adds them to the errors of a step taken.
+// `measured`: axis_areas() of `x` when known (empty otherwise).
 Errors smooth_errors(const Deformation& d, const LeftOut& left_out, const std::vector<double>& log_lengths,
-                     const Vertices& x, Slopes* slopes = nullptr, const Errors* beat = nullptr) {
+                     const Vertices& x, Slopes* slopes = nullptr, const Errors* beat = nullptr,
+                     std::vector<double> measured = {}) {
   const QualityMeasure& q = d.quality;
   const auto& edges = q.edges();
   const auto& areas = q.input_areas();
   const Eigen::Index count = d.triangles().rows();
-  std::vector<double> area;
-  const double total = axis_areas(d, x, area);
+  std::vector<double> area = std::move(measured);
+  double total = 0.0;
+  if (area.empty())
+    total = axis_areas(d, x, area);
+  else
+    for (double a : area) total += a;  // in axis_areas()'s order
   const double input_total = q.input_total_area();
   if (!(total > 0.0) || !(input_total > 0.0)) return {};
   const double s2 = total / input_total, log_scale = 0.5 * std::log(s2);
@@ -576,8 +591,10 @@ int polish_stage(RobustRun& run, std::unique_ptr<ChartPlanes> factored) {
     // neither smooth error grows.
     auto trial = [&](double length) {
       Trial t;
-      t.next = controlled_blend(d, planes, *index, rigid, d.x + length * direction, collapsed, bounds, held, areas_now);
-      t.errors = smooth_errors(d, left_out, log_lengths, t.next, &t.slopes, &errors);
+      std::vector<double> measured;
+      t.next = controlled_blend(d, planes, *index, rigid, d.x + length * direction, collapsed, bounds, held, areas_now,
+                                &measured);
+      t.errors = smooth_errors(d, left_out, log_lengths, t.next, &t.slopes, &errors, std::move(measured));
       return t;
     };
     // With a second core, a trial of the full length has the next halving's
