@@ -61,10 +61,11 @@ struct RobustRun {
   // input's factorisation, for the first flattening attempt; and, made
   // there too, the first fitting step's right-hand side.
   std::unique_ptr<ChartPlanes> ordered;
-  // At scale, the largest of those charts' systems factorised on a thread
-  // of its own while the fitting runs, whose back-substitutions leave the
-  // second core idle: the first flattening takes its factor (and waits for
-  // it). Joined before `ordered` goes.
+  // From a few thousand vertices, the largest of those charts' systems
+  // factorised on a thread of its own while the input's factorisation and
+  // the fitting run, which leave the second core idle part of the time:
+  // the first flattening takes its factor (and waits for it). Joined
+  // before `ordered` goes.
   std::future<void> ordered_factor;
   Eigen::MatrixX3d first_fit_rhs;
   bool relaxed = false, uncollapsed = false, untangle_tried = false;
