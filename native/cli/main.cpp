@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <limits>
 #include <new>
 
 #include "cli/commands.h"
@@ -66,6 +67,15 @@ int main(int argc, char** argv) {
   // up to 25.5 MiB instead of 24.6). The threads allocate seldom and in
   // large blocks, so they do not queue on one arena.
   mallopt(M_ARENA_MAX, 1);
+  // Freed memory kept for the next allocation rather than given back to the
+  // system: at scale a process makes and frees several chart factors of
+  // hundreds of MiB, and memory given back is handed out again as fresh
+  // pages the kernel clears first (B0 refined 64 times: a tenth of the run's
+  // CPU time; 16.4 -> 15.7 s, peak +2%). Large blocks come from the heap too
+  // (mmap only when the heap cannot grow), or they would be given back
+  // whenever freed.
+  mallopt(M_MMAP_MAX, 0);
+  mallopt(M_TRIM_THRESHOLD, std::numeric_limits<int>::max());
   if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
     print_usage(argc < 2 ? stderr : stdout);
     return argc < 2 ? 2 : finish("polycube", 0);
