@@ -633,6 +633,7 @@ int polish_stage(RobustRun& run, std::unique_ptr<ChartPlanes> factored) {
       best_x = d.x;
       best_steps = steps + 1;
     }
+    if (sum - (errors.edge + errors.area) < kPolishStall * sum) break;
   }
   d.result.factorizations += planes.factorizations();
   d.x = std::move(best_x);
