@@ -577,6 +577,7 @@ int polish_stage(RobustRun& run, std::unique_ptr<ChartPlanes> factored) {
     const double sum = errors.edge + errors.area;
     sums.push_back(sum);
     if (steps >= kPolishWindow && sums[steps - kPolishWindow] - sum < kPolishGain * sum) break;
+    if (steps >= 1 && sums[steps - 1] - sum < kPolishStall * sums[steps - 1]) break;
     // The areas where this step starts, measured beside the descent's
     // back-substitutions (the run's until a step moves them).
     const Vertices direction = common_descent(planes, gradients, [&] {
@@ -633,7 +634,6 @@ int polish_stage(RobustRun& run, std::unique_ptr<ChartPlanes> factored) {
       best_x = d.x;
       best_steps = steps + 1;
     }
-    if (sum - (errors.edge + errors.area) < kPolishStall * sum) break;
   }
   d.result.factorizations += planes.factorizations();
   d.x = std::move(best_x);
