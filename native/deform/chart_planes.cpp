@@ -16,16 +16,20 @@ namespace polycube {
 // join), is that of the system's own P^T L P. With W = A^-1 C^T and the
 // Schur complement S = C W (k x k for k joins): x = y - W S^-1 C y, y =
 // A^-1 b, for k back-substitutions once instead of a factorisation.
+// At scale W would take a column of the charts' size per join; the charts'
+// factor holds them instead, from sparse forward solves
+// (SparseCholesky::hold_equal).
 struct ChartPlanes::Merged {
   std::vector<int> representative;  // per unknown of the system: one of the charts' unknowns it joins
   std::vector<std::pair<int, int>> joins;
   Eigen::MatrixXd correction;  // W
   Eigen::LDLT<Eigen::MatrixXd> schur;
+  std::shared_ptr<const SparseCholesky::Joins> held;  // at scale, instead of W and S
 
   // From y = A^-1 b (a column per right-hand side) to x.
   template <class Columns>
   void hold_joins(Columns& y) const {
-    if (joins.empty()) return;
+    if (joins.empty() || held) return;
     Eigen::MatrixXd apart(joins.size(), y.cols());
     for (size_t j = 0; j < joins.size(); ++j) apart.row(j) = y.row(joins[j].first) - y.row(joins[j].second);
     y -= correction * schur.solve(apart);
@@ -36,9 +40,16 @@ namespace {
 
 // Merging beyond this many joins costs more back-substitutions than a
 // factorisation saves (B0: a factorisation is about 30 of its
-// back-substitutions); at scale, where a joined ordering makes a
-// factorisation cheap, systems are factorised as they were.
+// back-substitutions).
 constexpr int kMergedJoinsAtMost = 16;
+// At scale a join costs the factor's supernodes on two paths to its root,
+// a small part of a back-substitution: B0 refined 64 times collapses 203
+// slivers, 112 and 96 joins on charts of 453,634 and 389,266 unknowns,
+// whose Y has 8,064 and 6,190 rows: its flattening 5.8 -> 2.8 s, with
+// two factorisations fewer, and 650 MiB less at the peak. The joins' Y has
+// at most this many entries per unknown of the charts.
+constexpr int kHeldJoinsAtMost = 4'096;
+constexpr long kHeldEntriesPerUnknown = 32;
 
 }  // namespace
 
@@ -263,7 +274,8 @@ std::shared_ptr<const ChartPlanes::Merged> ChartPlanes::merged_onto_charts(int a
   const int chart_unknowns = static_cast<int>(factor.rows());
   const std::vector<int>& unknown = unknown_[axis];
   const int joins = chart_unknowns - m;
-  if (chart_unknowns >= SparseCholesky::kSupernodalThreshold || joins < 0 || joins > kMergedJoinsAtMost ||
+  const bool at_scale = chart_unknowns >= SparseCholesky::kSupernodalThreshold;
+  if (joins < 0 || joins > (at_scale ? kHeldJoinsAtMost : kMergedJoinsAtMost) ||
       charts->unknown.size() != unknown.size())
     return nullptr;
   // Each of the charts' unknowns into the one of this system it joins.
@@ -284,6 +296,10 @@ std::shared_ptr<const ChartPlanes::Merged> ChartPlanes::merged_onto_charts(int a
       merged->joins.emplace_back(first, c);
   }
   if (static_cast<int>(merged->joins.size()) != joins) return nullptr;
+  if (at_scale) {
+    merged->held = factor.hold_equal(merged->joins, kHeldEntriesPerUnknown * chart_unknowns);
+    return merged->held ? merged : nullptr;
+  }
   merged->correction.resize(chart_unknowns, joins);
   Eigen::VectorXd c = Eigen::VectorXd::Zero(chart_unknowns);
   for (int j = 0; j < joins; ++j) {
@@ -355,7 +371,11 @@ std::array<Vertices, K> ChartPlanes::solve_together(const std::array<const Eigen
     Columns b = Columns::Zero(cholesky_[axis]->rows(), K);
     for (Eigen::Index v = 0; v < n; ++v)
       for (int k = 0; k < K; ++k) b(unknown[v], k) += (*rhs[k])(v, axis);
-    Columns y = cholesky_[axis]->solve(b);
+    Columns y;
+    if (merged && merged->held)
+      y = cholesky_[axis]->solve(Eigen::MatrixXd(b), *merged->held);
+    else
+      y = cholesky_[axis]->solve(b);
     if (!merged) {
       for (Eigen::Index v = 0; v < n; ++v)
         for (int k = 0; k < K; ++k) x[k](v, axis) = y(unknown[v], k);

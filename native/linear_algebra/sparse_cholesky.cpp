@@ -1,5 +1,6 @@
 #include "linear_algebra/sparse_cholesky.h"
 
+#include <Eigen/Cholesky>
 #include <Eigen/SparseCholesky>
 
 #include "linear_algebra/run_tasks.h"
@@ -195,6 +196,35 @@ Eigen::MatrixX2d SparseCholesky::solve(const Eigen::MatrixX2d& rhs) const {
 Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& rhs) const {
   if (backends_->supernodal) return backends_->supernodal->solve(rhs);
   return backends_->simplicial->solve(rhs);
+}
+
+struct SparseCholesky::Joins {
+  std::vector<int> rows;  // of L^-1 P, where Y has its nonzeros
+  Eigen::MatrixXd y;      // those rows of Y
+  Eigen::LDLT<Eigen::MatrixXd> schur;
+};
+
+std::shared_ptr<const SparseCholesky::Joins> SparseCholesky::hold_equal(const std::vector<std::pair<int, int>>& joins,
+                                                                        long max_entries) const {
+  if (!backends_->supernodal) return nullptr;
+  auto held = std::make_shared<Joins>();
+  Eigen::MatrixXd yty;
+  if (!backends_->supernodal->forward_joins(joins, max_entries, held->rows, held->y, yty)) return nullptr;
+  held->schur.compute(yty);
+  if (held->schur.info() != Eigen::Success || !(held->schur.vectorD().minCoeff() > 0.0)) return nullptr;
+  return held;
+}
+
+Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& rhs, const Joins& joins) const {
+  Eigen::MatrixXd z = rhs;
+  if (!backends_->supernodal || !backends_->supernodal->forward(z)) throw Error("a joined solve without its factor");
+  const auto rows = static_cast<Eigen::Index>(joins.rows.size());
+  Eigen::MatrixXd on_rows(rows, z.cols());
+  for (Eigen::Index i = 0; i < rows; ++i) on_rows.row(i) = z.row(joins.rows[i]);
+  on_rows = joins.y * joins.schur.solve(joins.y.transpose() * on_rows);
+  for (Eigen::Index i = 0; i < rows; ++i) z.row(joins.rows[i]) -= on_rows.row(i);
+  backends_->supernodal->backward(z);
+  return z;
 }
 
 void SparseCholesky::release() {

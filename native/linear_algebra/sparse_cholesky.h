@@ -14,6 +14,8 @@
 
 #include <Eigen/SparseCore>
 #include <memory>
+#include <utility>
+#include <vector>
 
 namespace polycube {
 
@@ -62,6 +64,20 @@ class SparseCholesky {
   Eigen::MatrixX3d solve(const Eigen::MatrixX3d& rhs) const;
   Eigen::MatrixX2d solve(const Eigen::MatrixX2d& rhs) const;
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const;
+
+  // Pairs of unknowns held equal: solve(rhs, joins) minimises
+  // x^T A x / 2 - b^T x with x_a = x_b for each pair (a, b), A this
+  // factor's matrix, without a factorisation of the joined system. With C
+  // a row e_a - e_b per join, Y = L^-1 P C^T and S = Y^T Y (k x k for k
+  // joins): x = P^T L^-T (z - Y S^-1 Y^T z), z = L^-1 P b, one
+  // back-substitution a solve. Y costs only the factor's supernodes on each
+  // join's path to the root (supernodal_factor.h).
+  struct Joins;
+  // Null when this factor cannot hold them: Eigen's LDLT, or a Y of more
+  // than `max_entries` entries.
+  std::shared_ptr<const Joins> hold_equal(const std::vector<std::pair<int, int>>& joins, long max_entries) const;
+  // Equal to rounding: a caller that needs them equal takes one of each pair.
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& rhs, const Joins& joins) const;
 
   // Frees the factor (most of this object's memory) once no more solves are
   // due, or until analyze() again; backend(), factorizations() and

@@ -12,6 +12,8 @@
 
 #include <Eigen/SparseCore>
 #include <memory>
+#include <utility>
+#include <vector>
 
 namespace polycube {
 
@@ -40,6 +42,20 @@ class SupernodalFactor {
   virtual bool factorize(const Eigen::SparseMatrix<double>& matrix) = 0;
   // Every column of `rhs` in one pass over the factor.
   virtual Eigen::MatrixXd solve(const Eigen::MatrixXd& rhs) const = 0;
+  // The two halves of solve(), A^-1 = P^T L^-T L^-1 P: `columns` into
+  // L^-1 P columns, and back from there into P^T L^-T columns. False
+  // (`columns` left) when the factor is not CHOLMOD's supernodal L L^T.
+  virtual bool forward(Eigen::MatrixXd& columns) const = 0;
+  virtual bool backward(Eigen::MatrixXd& columns) const = 0;
+  // Y = L^-1 P C^T for the columns e_a - e_b of the pairs in `joins`, on
+  // the rows of L^-1 P where any of them can be nonzero (`rows`, in L's
+  // order; Y is rows.size() x joins.size()), and Y^T Y, from the factor's
+  // supernodes on the paths from a and b to the root alone: a few of a
+  // solve's operations per join where each has only two nonzeros. False
+  // when the factor is not CHOLMOD's L L^T, or Y would have more than
+  // `max_entries` entries.
+  virtual bool forward_joins(const std::vector<std::pair<int, int>>& joins, long max_entries, std::vector<int>& rows,
+                             Eigen::MatrixXd& y, Eigen::MatrixXd& yty) const = 0;
 };
 
 // A new factor from the plugin, or null when it cannot be loaded. The plugin

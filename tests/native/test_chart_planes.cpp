@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <cmath>
 #include <fstream>
+#include <limits>
 #include <memory>
 #include <set>
 
@@ -141,6 +143,46 @@ TEST(ChartPlanes, FewCollapsesSolveOnTheChartsFactor) {
       for (int v = 0; v < n; ++v)
         for (int w = v + 1; w < n; ++w)
           if (merged.unknowns(axis)[v] == merged.unknowns(axis)[w]) ASSERT_EQ(a(v, axis), a(w, axis));
+  }
+}
+
+// At scale too, past the few joins a dense correction can hold: there the
+// charts' factor holds them (SparseCholesky::hold_equal), so collapses cost
+// no factorisation, and the solution is the collapsed system's own.
+TEST(ChartPlanes, AtScaleCollapsesSolveOnTheChartsFactor) {
+  const PolygonMesh mesh = test_meshes::uv_sphere(500, 200);
+  const int n = static_cast<int>(mesh.vertices.rows());
+  const Triangulation t = triangulate(mesh.vertices, mesh.faces);
+  const std::vector<int> labels = test_meshes::nearest_triangle_labels(mesh, t);
+  Laplacian laplacian(n, t.triangles);
+  laplacian.assemble(cotangent_weights(mesh.vertices, t.triangles).cwiseMax(0.0), 1e-8);
+  const Eigen::SparseMatrix<double>& L = laplacian.matrix();
+  const Eigen::MatrixX3d rhs = L * mesh.vertices;
+  // On x and y, whose systems (76,000 unknowns each, z's 46,000) are
+  // CHOLMOD's.
+  auto collapsed = [&](ChartPlanes& planes) {
+    for (Eigen::Index f = 0; f < t.triangles.rows(); f += t.triangles.rows() / 40)
+      planes.collapse(f, labels[f] / 2 == 0 ? 1 : 0);
+    planes.factorize(L);
+  };
+  ChartPlanes merged(n, t.triangles, labels);
+  merged.factorize(L);
+  collapsed(merged);
+  ChartPlanes direct(n, t.triangles, labels);
+  collapsed(direct);
+  const Vertices a = merged.solve(rhs), b = direct.solve(rhs);
+#ifdef POLYCUBE_WITH_CHOLMOD
+  EXPECT_EQ(merged.factorizations(), 3);  // the charts' alone
+#endif
+  EXPECT_EQ(direct.factorizations(), 3);
+  EXPECT_LT((a - b).cwiseAbs().maxCoeff(), 1e-9 * b.cwiseAbs().maxCoeff());
+  for (int axis = 0; axis < 3; ++axis) {
+    std::vector<double> value(n, std::numeric_limits<double>::quiet_NaN());
+    for (int v = 0; v < n; ++v) {
+      double& shared = value[merged.unknowns(axis)[v]];
+      if (std::isnan(shared)) shared = a(v, axis);
+      ASSERT_EQ(a(v, axis), shared);  // collapsed exactly, not to rounding
+    }
   }
 }
 

@@ -3,6 +3,7 @@
 #include <sys/resource.h>
 
 #include <Eigen/SparseCholesky>
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <memory>
@@ -18,6 +19,7 @@
 #include "linear_algebra/sparse_cholesky.h"
 #include "linear_algebra/supernodal_factor.h"
 #include "mesh/triangulate.h"
+#include "mesh/union_find.h"
 #include "test_meshes.h"
 
 namespace {
@@ -263,7 +265,7 @@ TEST(SparseCholesky, ACopiedAnalysisFactorisesBitForBit) {
       continue;
     }
     ASSERT_NE(copy, nullptr);
-    EXPECT_EQ(analysed.copy_analysis(), nullptr);  // factorised: nothing to copy
+    EXPECT_EQ(analysed.copy_analysis(), nullptr);                    // factorised: nothing to copy
     std::unique_ptr<SparseCholesky> second = copy->copy_analysis();  // a copy's copy
     ASSERT_NE(second, nullptr);
     for (SparseCholesky* factor : {copy.get(), second.get()}) {
@@ -273,6 +275,60 @@ TEST(SparseCholesky, ACopiedAnalysisFactorisesBitForBit) {
       EXPECT_EQ(factor->solve(b), analysed.solve(b));
     }
   }
+}
+
+// Unknowns held equal on CHOLMOD's factor of the system without the joins
+// (SparseCholesky::hold_equal) minimise what the joined system's own
+// factor does, to rounding; Eigen's LDLT and a Y over its budget decline.
+TEST(SparseCholesky, HeldEqualUnknownsSolveAsTheirJoinedSystem) {
+  const SparseMatrix small = shifted_laplacian(test_meshes::uv_sphere(32, 16));
+  SparseCholesky simplicial;
+  simplicial.analyze(small);
+  simplicial.factorize(small);
+  EXPECT_EQ(simplicial.hold_equal({{0, 1}}, 1'000'000), nullptr);
+  const SparseMatrix a = shifted_laplacian(test_meshes::uv_sphere(400, 150));
+  const int n = static_cast<int>(a.rows());
+  SparseCholesky cholesky;
+  cholesky.analyze(a);
+  cholesky.factorize(a);
+  if (std::string(cholesky.backend()) != "cholmod-supernodal") GTEST_SKIP() << "no CHOLMOD plugin";
+  // Chains and stars of joins, near and far apart (every join independent).
+  std::vector<std::pair<int, int>> joins;
+  for (int i = 0; i < 60; ++i) joins.emplace_back((i * 7919) % n, (i * 104729 + 13) % n);
+  for (int i = 0; i < 5; ++i) joins.emplace_back(1000, 1001 + i);
+  UnionFind sets(n);
+  std::vector<std::pair<int, int>> independent;
+  for (const auto& [p, q] : joins)
+    if (sets.join(p, q)) independent.emplace_back(p, q);
+  EXPECT_EQ(cholesky.hold_equal(independent, 10), nullptr);
+  const std::shared_ptr<const SparseCholesky::Joins> held = cholesky.hold_equal(independent, 100L * n);
+  ASSERT_NE(held, nullptr);
+  // The joined system P^T A P, factorised on its own.
+  std::vector<int> unknown(n), of_root(n, -1);
+  int m = 0;
+  for (int v = 0; v < n; ++v) {
+    int& u = of_root[sets.root(v)];
+    if (u < 0) u = m++;
+    unknown[v] = u;
+  }
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int c = 0; c < n; ++c)
+    for (SparseMatrix::InnerIterator it(a, c); it; ++it)
+      entries.emplace_back(unknown[it.row()], unknown[c], it.value());
+  SparseMatrix joined(m, m);
+  joined.setFromTriplets(entries.begin(), entries.end());
+  Eigen::SimplicialLDLT<SparseMatrix> direct(joined);
+  ASSERT_EQ(direct.info(), Eigen::Success);
+  const Eigen::MatrixXd b = Eigen::MatrixXd::Random(n, 2);
+  Eigen::MatrixXd reduced_b = Eigen::MatrixXd::Zero(m, 2);
+  for (int v = 0; v < n; ++v) reduced_b.row(unknown[v]) += b.row(v);
+  const Eigen::MatrixXd expected = direct.solve(reduced_b);
+  const Eigen::MatrixXd x = cholesky.solve(b, *held);
+  double worst = 0.0;
+  for (int v = 0; v < n; ++v) worst = std::max(worst, (x.row(v) - expected.row(unknown[v])).cwiseAbs().maxCoeff());
+  EXPECT_LT(worst, 1e-9 * expected.cwiseAbs().maxCoeff());
+  // Without the joins it would differ far more than that.
+  EXPECT_GT((cholesky.solve(Eigen::MatrixX2d(b)) - x).cwiseAbs().maxCoeff(), 1e-3 * expected.cwiseAbs().maxCoeff());
 }
 
 TEST(SparseCholesky, IndefiniteLargeSystemFallsBackToLdlt) {

@@ -7,6 +7,9 @@
 #include <omp.h>
 #endif
 
+#include <algorithm>
+#include <initializer_list>
+
 #include "linear_algebra/supernodal_factor.h"
 
 namespace polycube {
@@ -58,6 +61,14 @@ class Llt : public Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> {
     m_info = m_analysisIsOk ? Eigen::Success : Eigen::NumericalIssue;
     return m_analysisIsOk;
   }
+  // The numeric factor when it is a supernodal L L^T of doubles (what
+  // forward() and forward_joins() read), null otherwise.
+  cholmod_factor* supernodal_llt() const {
+    cholmod_factor* const l = m_factorizationIsOk ? m_cholmodFactor : nullptr;
+    if (!l || !l->is_super || !l->is_ll || l->xtype != CHOLMOD_REAL || l->itype != CHOLMOD_INT) return nullptr;
+    return l;
+  }
+  cholmod_common& common() const { return const_cast<Llt*>(this)->cholmod(); }
   Eigen::VectorXi ordering() const {
     if (!m_cholmodFactor || !m_cholmodFactor->Perm) return {};
     return Eigen::Map<const Eigen::VectorXi>(static_cast<const int*>(m_cholmodFactor->Perm),
@@ -127,7 +138,111 @@ class SupernodalCholmod final : public SupernodalFactor {
     return llt_.solve(rhs);
   }
 
+  bool forward(Eigen::MatrixXd& columns) const override { return solve_in_place(columns, {CHOLMOD_P, CHOLMOD_L}); }
+
+  bool backward(Eigen::MatrixXd& columns) const override { return solve_in_place(columns, {CHOLMOD_Lt, CHOLMOD_Pt}); }
+
+  bool forward_joins(const std::vector<std::pair<int, int>>& joins, long max_entries, std::vector<int>& rows,
+                     Eigen::MatrixXd& y, Eigen::MatrixXd& yty) const override {
+    const cholmod_factor* l = llt_.supernodal_llt();
+    if (!l) return false;
+    const int n = static_cast<int>(l->n), supernodes = static_cast<int>(l->nsuper);
+    const int* super = static_cast<const int*>(l->super);  // each supernode's first column
+    const int* pi = static_cast<const int*>(l->pi);        // its first row index in `s`
+    const int* px = static_cast<const int*>(l->px);        // its first value in `x`, by columns
+    const int* s = static_cast<const int*>(l->s);
+    const double* x = static_cast<const double*>(l->x);
+    const int* perm = static_cast<const int*>(l->Perm);
+    std::vector<int> order_of(n), supernode_of(n);
+    for (int k = 0; k < n; ++k) order_of[perm ? perm[k] : k] = k;
+    for (int sn = 0; sn < supernodes; ++sn)
+      for (int c = super[sn]; c < super[sn + 1]; ++c) supernode_of[c] = sn;
+    // A supernode's parent holds its first row below its diagonal block.
+    auto parent = [&](int sn) {
+      const int columns = super[sn + 1] - super[sn];
+      return pi[sn + 1] - pi[sn] > columns ? supernode_of[s[pi[sn] + columns]] : -1;
+    };
+    // (supernode, join) for every supernode on a join's paths to the root:
+    // where its column of Y can be nonzero.
+    const int k = static_cast<int>(joins.size());
+    std::vector<std::pair<int, int>> on_path;
+    std::vector<int> last_join(supernodes, -1);
+    for (int j = 0; j < k; ++j)
+      for (int unknown : {joins[j].first, joins[j].second})
+        for (int sn = supernode_of[order_of[unknown]]; sn >= 0 && last_join[sn] != j; sn = parent(sn)) {
+          last_join[sn] = j;
+          on_path.emplace_back(sn, j);
+        }
+    std::sort(on_path.begin(), on_path.end());
+    std::vector<int> position(n, -1);
+    rows.clear();
+    for (size_t i = 0; i < on_path.size(); ++i) {
+      const int sn = on_path[i].first;
+      if (i > 0 && on_path[i - 1].first == sn) continue;
+      for (int c = super[sn]; c < super[sn + 1]; ++c) {
+        position[c] = static_cast<int>(rows.size());
+        rows.push_back(c);
+      }
+    }
+    if (static_cast<long>(rows.size()) * k > max_entries) return false;
+    y.setZero(static_cast<Eigen::Index>(rows.size()), k);
+    yty.setZero(k, k);
+    for (int j = 0; j < k; ++j) {
+      y(position[order_of[joins[j].first]], j) += 1.0;
+      y(position[order_of[joins[j].second]], j) -= 1.0;
+    }
+    // Supernode by supernode from the leaves, as CHOLMOD's forward solve,
+    // on the columns of Y whose paths pass it alone.
+    Eigen::MatrixXd block;
+    std::vector<int> columns;
+    for (size_t i = 0; i < on_path.size();) {
+      const int sn = on_path[i].first;
+      columns.clear();
+      for (; i < on_path.size() && on_path[i].first == sn; ++i) columns.push_back(on_path[i].second);
+      const int width = super[sn + 1] - super[sn], height = pi[sn + 1] - pi[sn];
+      const int* row = s + pi[sn];
+      const Eigen::Map<const Eigen::MatrixXd, 0, Eigen::OuterStride<>> lower(x + px[sn], height, width,
+                                                                             Eigen::OuterStride<>(height));
+      const int m = static_cast<int>(columns.size());
+      block.resize(height, m);
+      for (int c = 0; c < m; ++c)
+        for (int r = 0; r < height; ++r) block(r, c) = y(position[row[r]], columns[c]);
+      lower.topRows(width).triangularView<Eigen::Lower>().solveInPlace(block.topRows(width));
+      if (height > width)
+        block.bottomRows(height - width).noalias() -= lower.bottomRows(height - width) * block.topRows(width);
+      for (int c = 0; c < m; ++c)
+        for (int r = 0; r < height; ++r) y(position[row[r]], columns[c]) = block(r, c);
+      // These rows of Y are final: their part of Y^T Y.
+      const Eigen::MatrixXd product = block.topRows(width).transpose() * block.topRows(width);
+      for (int a = 0; a < m; ++a)
+        for (int b = 0; b < m; ++b) yty(columns[a], columns[b]) += product(a, b);
+    }
+    return true;
+  }
+
  private:
+  // `columns` through CHOLMOD's solves of `systems`, one after the other.
+  bool solve_in_place(Eigen::MatrixXd& columns, std::initializer_list<int> systems) const {
+    cholmod_factor* l = llt_.supernodal_llt();
+    if (!l || columns.rows() != static_cast<Eigen::Index>(l->n)) return false;
+    const SerialOpenMP serial;
+    for (int system : systems) {
+      cholmod_dense b{};
+      b.nrow = static_cast<size_t>(columns.rows());
+      b.ncol = static_cast<size_t>(columns.cols());
+      b.nzmax = b.nrow * b.ncol;
+      b.d = b.nrow;
+      b.x = columns.data();
+      b.xtype = CHOLMOD_REAL;
+      b.dtype = CHOLMOD_DOUBLE;
+      cholmod_dense* solved = cholmod_solve(system, l, &b, &llt_.common());
+      if (!solved) return false;
+      std::copy_n(static_cast<const double*>(solved->x), columns.size(), columns.data());
+      cholmod_free_dense(&solved, &llt_.common());
+    }
+    return true;
+  }
+
   Llt llt_;
 };
 
