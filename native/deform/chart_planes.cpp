@@ -48,7 +48,7 @@ constexpr int kMergedJoinsAtMost = 16;
 // whose Y has 8,064 and 6,190 rows: its flattening 5.8 -> 2.8 s, with
 // two factorisations fewer, and 650 MiB less at the peak. The joins' Y has
 // at most this many entries per unknown of the charts.
-constexpr int kHeldJoinsAtMost = 4'096;
+constexpr int kHeldJoinsAtMost = 2'048;
 constexpr long kHeldEntriesPerUnknown = 32;
 
 }  // namespace
@@ -341,8 +341,8 @@ bool ChartPlanes::factorize_axis(const Eigen::SparseMatrix<double>& laplacian, i
   if (joined && charts_only_[axis] && charts->analysis) cholesky = charts->analysis->copy_analysis();
   if (!cholesky) {
     cholesky = std::make_shared<SparseCholesky>();
-    cholesky->analyze(reduced, joined ? joined_ordering(charts->ordering, charts->unknown, unknown, m)
-                                      : SparseCholesky::Ordering());
+    cholesky->analyze(
+        reduced, joined ? joined_ordering(charts->ordering, charts->unknown, unknown, m) : SparseCholesky::Ordering());
     if (charts_only_[axis] && !joined)
       chart_orderings_[axis] = std::make_shared<const ChartOrdering>(
           ChartOrdering{cholesky->ordering(), unknown, cholesky->copy_analysis()});

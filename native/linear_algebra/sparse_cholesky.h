@@ -73,8 +73,9 @@ class SparseCholesky {
   // back-substitution a solve. Y costs only the factor's supernodes on each
   // join's path to the root (supernodal_factor.h).
   struct Joins;
-  // Null when this factor cannot hold them: Eigen's LDLT, or a Y of more
-  // than `max_entries` entries.
+  // Null when this factor cannot hold them: Eigen's LDLT, a Y of more than
+  // `max_entries` entries, or joins that would cost more than a quarter of
+  // a factorisation (the joined system's own factor then costs little more).
   std::shared_ptr<const Joins> hold_equal(const std::vector<std::pair<int, int>>& joins, long max_entries) const;
   // Equal to rounding: a caller that needs them equal takes one of each pair.
   Eigen::MatrixXd solve(const Eigen::MatrixXd& rhs, const Joins& joins) const;

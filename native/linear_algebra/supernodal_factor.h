@@ -52,8 +52,9 @@ class SupernodalFactor {
   // order; Y is rows.size() x joins.size()), and Y^T Y, from the factor's
   // supernodes on the paths from a and b to the root alone: a few of a
   // solve's operations per join where each has only two nonzeros. False
-  // when the factor is not CHOLMOD's L L^T, or Y would have more than
-  // `max_entries` entries.
+  // when the factor is not CHOLMOD's L L^T, Y would have more than
+  // `max_entries` entries, or the joins would cost more than a quarter of
+  // a factorisation.
   virtual bool forward_joins(const std::vector<std::pair<int, int>>& joins, long max_entries, std::vector<int>& rows,
                              Eigen::MatrixXd& y, Eigen::MatrixXd& yty) const = 0;
 };

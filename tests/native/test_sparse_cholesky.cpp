@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <memory>
 #include <string>
 #include <thread>
@@ -301,6 +302,10 @@ TEST(SparseCholesky, HeldEqualUnknownsSolveAsTheirJoinedSystem) {
   for (const auto& [p, q] : joins)
     if (sets.join(p, q)) independent.emplace_back(p, q);
   EXPECT_EQ(cholesky.hold_equal(independent, 10), nullptr);
+  // So many that their Schur complement costs more than a factorisation.
+  std::vector<std::pair<int, int>> many;
+  for (int i = 0; i < 1500; ++i) many.emplace_back(i, i + n / 2);
+  EXPECT_EQ(cholesky.hold_equal(many, std::numeric_limits<long>::max()), nullptr);
   const std::shared_ptr<const SparseCholesky::Joins> held = cholesky.hold_equal(independent, 100L * n);
   ASSERT_NE(held, nullptr);
   // The joined system P^T A P, factorised on its own.

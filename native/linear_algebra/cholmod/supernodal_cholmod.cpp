@@ -93,6 +93,10 @@ class Llt : public Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> {
   }
 };
 
+// forward_joins() declines joins that would cost more than this share of
+// a factorisation: the joined system's own factor then costs little more.
+constexpr double kJoinsShareOfFactorisation = 0.25;
+
 class SupernodalCholmod final : public SupernodalFactor {
  public:
   SupernodalCholmod() { llt_.cholmod().print = 0; }
@@ -185,6 +189,23 @@ class SupernodalCholmod final : public SupernodalFactor {
       }
     }
     if (static_cast<long>(rows.size()) * k > max_entries) return false;
+    // Declined where it would cost more than kJoinsShareOfFactorisation of
+    // factorising the joined system: each supernode's part of Y and Y^T Y
+    // on the joins passing it, and S's own factorisation, against the
+    // factor's updates (each supernode's rows squared by its columns).
+    double joins_cost = static_cast<double>(k) * k * k / 3.0, factor_cost = 0.0;
+    for (size_t i = 0, first = 0; i <= on_path.size(); ++i) {
+      if (i < on_path.size() && on_path[i].first == on_path[first].first) continue;
+      const int sn = on_path[first].first;
+      const double width = super[sn + 1] - super[sn], height = pi[sn + 1] - pi[sn], passing = i - first;
+      joins_cost += passing * (height * width + passing * width);
+      first = i;
+    }
+    for (int sn = 0; sn < supernodes; ++sn) {
+      const double width = super[sn + 1] - super[sn], height = pi[sn + 1] - pi[sn];
+      factor_cost += width * height * height;
+    }
+    if (joins_cost > kJoinsShareOfFactorisation * factor_cost) return false;
     y.setZero(static_cast<Eigen::Index>(rows.size()), k);
     yty.setZero(k, k);
     for (int j = 0; j < k; ++j) {
