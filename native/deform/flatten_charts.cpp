@@ -41,8 +41,7 @@ constexpr int kRegionRings = 4;
 FlatCharts flatten_charts(const Vertices& input, const Vertices& current, const Triangles& triangles,
                           const std::vector<int>& triangle_labels, const CotangentWeights& weights,
                           const Eigen::SparseMatrix<double>& laplacian, double shift, const QualityMeasure& quality,
-                          const Placement& place, double max_collapsed, int max_rounds,
-                          const ChartPlanes* ordered) {
+                          const Placement& place, double max_collapsed, int max_rounds, const ChartPlanes* ordered) {
   FlatCharts result;
   result.planes = std::make_unique<ChartPlanes>(static_cast<int>(current.rows()), triangles, triangle_labels);
   if (ordered) result.planes->use_chart_factors(*ordered);
@@ -53,6 +52,7 @@ FlatCharts flatten_charts(const Vertices& input, const Vertices& current, const 
   const int n = static_cast<int>(current.rows());
   const TriangleIncidence incidence(n, triangles);  // to grow the region of a local solve
   std::vector<char> region(n);
+  std::vector<int> moved;  // the triangles a local solve can move
   int rings = kRegionRings, previous_flipped = 0;
   bool verify = false;
   FlattenProgress progress(n);
@@ -100,7 +100,16 @@ FlatCharts flatten_charts(const Vertices& input, const Vertices& current, const 
       result.positions = place(result.planes->solve(rhs));
     }
     previous_flipped = result.rounds == 1 ? std::numeric_limits<int>::max() : result.states.flipped_count;
-    result.states = quality.face_states(result.positions);
+    if (solved) {
+      // A local solve moves the region's vertices alone.
+      moved.clear();
+      for (Eigen::Index t = 0; t < triangles.rows(); ++t)
+        if (region[triangles(t, 0)] || region[triangles(t, 1)] || region[triangles(t, 2)])
+          moved.push_back(static_cast<int>(t));
+      quality.restate_moved(result.positions, moved, result.states);
+    } else {
+      result.states = quality.face_states(result.positions);
+    }
     if (result.rounds == 1) {
       result.first_positions = result.positions;
       if (n >= kKeepChartFactorsFrom) {

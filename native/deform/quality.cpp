@@ -105,6 +105,26 @@ FaceStates QualityMeasure::face_states(const Vertices& output) const {
   return s;
 }
 
+void QualityMeasure::restate_moved(const Vertices& output, const std::vector<int>& moved, FaceStates& s) const {
+  for (int f : moved) s.area[f] = 0.5 * doubled_normal(output, triangles_, f).norm();
+  const double total = total_area(s.area);
+  s.scale2 = input_total_ > 0.0 && total > 0.0 ? total / input_total_ : 1.0;
+  for (int f : moved) update_face_state(output, f, s);
+  const Eigen::Index count = triangles_.rows();
+  int flipped = 0;
+  double max_deviation = 0.0;
+  for (Eigen::Index f = 0; f < count; ++f) {
+    // A moved triangle's flag is the new scale's already; another's only
+    // when the scale moved it across the bound.
+    if (static_cast<bool>(s.collapsed[f]) != is_collapsed(s.area[f], input_area_[f], s.scale2))
+      update_face_state(output, f, s);
+    flipped += s.flipped[f];
+    max_deviation = std::max(max_deviation, s.deviation_deg[f]);
+  }
+  s.flipped_count = flipped;
+  s.max_deviation_deg = max_deviation;
+}
+
 void QualityMeasure::update_face_state(const Vertices& output, Eigen::Index f, FaceStates& s) const {
   const Eigen::Vector3d normal = doubled_normal(output, triangles_, f);
   const double area = 0.5 * normal.norm();

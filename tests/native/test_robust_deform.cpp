@@ -22,6 +22,7 @@
 #include "labels/nearest_labels.h"
 #include "mesh/triangulate.h"
 #include "mesh/unit_box.h"
+#include "nearest_flat_start.h"
 #include "test_meshes.h"
 
 namespace {
@@ -401,18 +402,72 @@ TEST(Robust, FoldsBeyondAgreesWithFaceStates) {
   EXPECT_GE(folding, 2);  // the test sees both answers
 }
 
+// A sphere, its triangles' nearest labels and their measure (not copied:
+// the measure refers to the triangles).
+struct MeasuredSphere {
+  const PolygonMesh mesh = test_meshes::uv_sphere(24, 12);
+  const Triangulation triangulation = triangulate(mesh.vertices, mesh.faces);
+  const QualityMeasure measure{mesh.vertices, triangulation.triangles,
+                               test_meshes::nearest_triangle_labels(mesh, triangulation)};
+};
+
+// A local solve's states are measured again only around what it moved
+// (restate_moved): the same states, bit for bit, as measuring the whole
+// mesh, whether the new scale moves other triangles across the collapse
+// bound or not.
+TEST(Robust, RestatedMovedTrianglesAgreeWithTheWholeMesh) {
+  const MeasuredSphere sphere;
+  const PolygonMesh& mesh = sphere.mesh;
+  const Triangles& triangles = sphere.triangulation.triangles;
+  const QualityMeasure& measure = sphere.measure;
+  // A triangle just above the collapse bound, its corner a pulled to the
+  // opposite edge's midpoint: a larger scale collapses it without moving it.
+  auto far_from_moves = [](int v) { return v % 11 != 3 && v != 5 && v != 6; };
+  Eigen::Index squashed = 0;
+  while (!(far_from_moves(triangles(squashed, 0)) && far_from_moves(triangles(squashed, 1)) &&
+           far_from_moves(triangles(squashed, 2))))
+    ++squashed;
+  Vertices start = mesh.vertices;
+  const int a = triangles(squashed, 0), b = triangles(squashed, 1), c = triangles(squashed, 2);
+  const Eigen::RowVector3d middle = 0.5 * (start.row(b) + start.row(c));
+  start.row(a) = middle + 1.05 * kCollapsedAreaRatio * (start.row(a) - middle);
+  for (const double push : {0.01, 2.0}) {
+    FaceStates states = measure.face_states(start);
+    ASSERT_FALSE(states.collapsed[squashed]);
+    Vertices moved_x = start;
+    std::vector<char> moved_vertex(start.rows(), 0);
+    for (int v = 3; v < moved_x.rows(); v += 11) {
+      moved_x.row(v) *= 1.0 + push;
+      moved_vertex[v] = 1;
+    }
+    moved_x.row(5) = moved_x.row(6);  // and one triangle collapsed
+    moved_vertex[5] = 1;
+    std::vector<int> moved;
+    for (Eigen::Index t = 0; t < triangles.rows(); ++t)
+      if (moved_vertex[triangles(t, 0)] || moved_vertex[triangles(t, 1)] || moved_vertex[triangles(t, 2)])
+        moved.push_back(static_cast<int>(t));
+    const FaceStates whole = measure.face_states(moved_x);
+    measure.restate_moved(moved_x, moved, states);
+    EXPECT_EQ(states.area, whole.area);
+    EXPECT_EQ(states.deviation_deg, whole.deviation_deg);
+    EXPECT_EQ(states.collapsed, whole.collapsed);
+    EXPECT_EQ(states.flipped, whole.flipped);
+    EXPECT_EQ(states.scale2, whole.scale2);
+    EXPECT_EQ(states.flipped_count, whole.flipped_count);
+    EXPECT_EQ(states.max_deviation_deg, whole.max_deviation_deg);
+    EXPECT_EQ(static_cast<bool>(whole.collapsed[squashed]), push > 1.0);  // the case the test is for
+  }
+}
+
 // The polish's step control measures again only the triangles around the
 // corners a trial moved (rescale_moved), and flags only those and the ones
 // pointing against their axis (turned_over): the same flags, scale and
 // areas, bit for bit, as measuring the whole mesh.
 TEST(Robust, FoldFlagsOfMovedTrianglesAgreeWithTheWholeMesh) {
-  const PolygonMesh mesh = test_meshes::uv_sphere(24, 12);
-  const Triangulation triangulation = triangulate(mesh.vertices, mesh.faces);
-  const Triangles& triangles = triangulation.triangles;
-  std::vector<int> labels(triangles.rows());
-  const std::vector<int> polygon_labels = nearest_labels(mesh);
-  for (Eigen::Index t = 0; t < triangles.rows(); ++t) labels[t] = polygon_labels[triangulation.face_of_triangle[t]];
-  const QualityMeasure measure(mesh.vertices, triangles, labels);
+  const MeasuredSphere sphere;
+  const PolygonMesh& mesh = sphere.mesh;
+  const Triangles& triangles = sphere.triangulation.triangles;
+  const QualityMeasure& measure = sphere.measure;
   TriangleAreas kept;
   std::vector<char> collapsed, flipped;
   measure.fold_flags(mesh.vertices, kept, collapsed, flipped);
