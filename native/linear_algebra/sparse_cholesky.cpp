@@ -223,7 +223,7 @@ Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& rhs, const Joins& j
   for (Eigen::Index i = 0; i < rows; ++i) on_rows.row(i) = z.row(joins.rows[i]);
   on_rows = joins.y * joins.schur.solve(joins.y.transpose() * on_rows);
   for (Eigen::Index i = 0; i < rows; ++i) z.row(joins.rows[i]) -= on_rows.row(i);
-  backends_->supernodal->backward(z);
+  if (!backends_->supernodal->backward(z)) throw Error("a joined solve without its factor");
   return z;
 }
 

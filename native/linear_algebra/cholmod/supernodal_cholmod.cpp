@@ -178,33 +178,33 @@ class SupernodalCholmod final : public SupernodalFactor {
           on_path.emplace_back(sn, j);
         }
     std::sort(on_path.begin(), on_path.end());
+    // Where each supernode's joins begin in on_path, and its end.
+    std::vector<size_t> group;
+    for (size_t i = 0; i < on_path.size(); ++i)
+      if (i == 0 || on_path[i - 1].first != on_path[i].first) group.push_back(i);
+    group.push_back(on_path.size());
+    auto supernode = [&](size_t g) { return on_path[group[g]].first; };
+    const size_t groups = group.size() - 1;
     std::vector<int> position(n, -1);
     rows.clear();
-    for (size_t i = 0; i < on_path.size(); ++i) {
-      const int sn = on_path[i].first;
-      if (i > 0 && on_path[i - 1].first == sn) continue;
-      for (int c = super[sn]; c < super[sn + 1]; ++c) {
+    for (size_t g = 0; g < groups; ++g)
+      for (int c = super[supernode(g)]; c < super[supernode(g) + 1]; ++c) {
         position[c] = static_cast<int>(rows.size());
         rows.push_back(c);
       }
-    }
     if (static_cast<long>(rows.size()) * k > max_entries) return false;
     // Declined where it would cost more than kJoinsShareOfFactorisation of
     // factorising the joined system: each supernode's part of Y and Y^T Y
     // on the joins passing it, and S's own factorisation, against the
     // factor's updates (each supernode's rows squared by its columns).
+    auto width = [&](int sn) { return static_cast<double>(super[sn + 1] - super[sn]); };
+    auto height = [&](int sn) { return static_cast<double>(pi[sn + 1] - pi[sn]); };
     double joins_cost = static_cast<double>(k) * k * k / 3.0, factor_cost = 0.0;
-    for (size_t i = 0, first = 0; i <= on_path.size(); ++i) {
-      if (i < on_path.size() && on_path[i].first == on_path[first].first) continue;
-      const int sn = on_path[first].first;
-      const double width = super[sn + 1] - super[sn], height = pi[sn + 1] - pi[sn], passing = i - first;
-      joins_cost += passing * (height * width + passing * width);
-      first = i;
+    for (size_t g = 0; g < groups; ++g) {
+      const double passing = static_cast<double>(group[g + 1] - group[g]);
+      joins_cost += passing * width(supernode(g)) * (height(supernode(g)) + passing);
     }
-    for (int sn = 0; sn < supernodes; ++sn) {
-      const double width = super[sn + 1] - super[sn], height = pi[sn + 1] - pi[sn];
-      factor_cost += width * height * height;
-    }
+    for (int sn = 0; sn < supernodes; ++sn) factor_cost += width(sn) * height(sn) * height(sn);
     if (joins_cost > kJoinsShareOfFactorisation * factor_cost) return false;
     y.setZero(static_cast<Eigen::Index>(rows.size()), k);
     yty.setZero(k, k);
@@ -215,28 +215,25 @@ class SupernodalCholmod final : public SupernodalFactor {
     // Supernode by supernode from the leaves, as CHOLMOD's forward solve,
     // on the columns of Y whose paths pass it alone.
     Eigen::MatrixXd block;
-    std::vector<int> columns;
-    for (size_t i = 0; i < on_path.size();) {
-      const int sn = on_path[i].first;
-      columns.clear();
-      for (; i < on_path.size() && on_path[i].first == sn; ++i) columns.push_back(on_path[i].second);
-      const int width = super[sn + 1] - super[sn], height = pi[sn + 1] - pi[sn];
+    for (size_t g = 0; g < groups; ++g) {
+      const int sn = supernode(g), columns = super[sn + 1] - super[sn], rows_below = pi[sn + 1] - pi[sn] - columns;
       const int* row = s + pi[sn];
-      const Eigen::Map<const Eigen::MatrixXd, 0, Eigen::OuterStride<>> lower(x + px[sn], height, width,
-                                                                             Eigen::OuterStride<>(height));
-      const int m = static_cast<int>(columns.size());
-      block.resize(height, m);
+      const Eigen::Map<const Eigen::MatrixXd, 0, Eigen::OuterStride<>> lower(
+          x + px[sn], columns + rows_below, columns, Eigen::OuterStride<>(columns + rows_below));
+      const int m = static_cast<int>(group[g + 1] - group[g]);
+      auto join = [&](int c) { return on_path[group[g] + c].second; };
+      block.resize(columns + rows_below, m);
       for (int c = 0; c < m; ++c)
-        for (int r = 0; r < height; ++r) block(r, c) = y(position[row[r]], columns[c]);
-      lower.topRows(width).triangularView<Eigen::Lower>().solveInPlace(block.topRows(width));
-      if (height > width)
-        block.bottomRows(height - width).noalias() -= lower.bottomRows(height - width) * block.topRows(width);
+        for (int r = 0; r < block.rows(); ++r) block(r, c) = y(position[row[r]], join(c));
+      lower.topRows(columns).triangularView<Eigen::Lower>().solveInPlace(block.topRows(columns));
+      if (rows_below > 0)
+        block.bottomRows(rows_below).noalias() -= lower.bottomRows(rows_below) * block.topRows(columns);
       for (int c = 0; c < m; ++c)
-        for (int r = 0; r < height; ++r) y(position[row[r]], columns[c]) = block(r, c);
+        for (int r = 0; r < block.rows(); ++r) y(position[row[r]], join(c)) = block(r, c);
       // These rows of Y are final: their part of Y^T Y.
-      const Eigen::MatrixXd product = block.topRows(width).transpose() * block.topRows(width);
+      const Eigen::MatrixXd product = block.topRows(columns).transpose() * block.topRows(columns);
       for (int a = 0; a < m; ++a)
-        for (int b = 0; b < m; ++b) yty(columns[a], columns[b]) += product(a, b);
+        for (int b = 0; b < m; ++b) yty(join(a), join(b)) += product(a, b);
     }
     return true;
   }
