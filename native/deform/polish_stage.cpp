@@ -577,7 +577,6 @@ int polish_stage(RobustRun& run, std::unique_ptr<ChartPlanes> factored) {
     const double sum = errors.edge + errors.area;
     sums.push_back(sum);
     if (steps >= kPolishWindow && sums[steps - kPolishWindow] - sum < kPolishGain * sum) break;
-    if (steps >= 1 && sums[steps - 1] - sum < kPolishStall * sums[steps - 1]) break;
     // The areas where this step starts, measured beside the descent's
     // back-substitutions (the run's until a step moves them).
     const Vertices direction = common_descent(planes, gradients, [&] {
@@ -615,7 +614,7 @@ int polish_stage(RobustRun& run, std::unique_ptr<ChartPlanes> factored) {
         pair[0] = trial(step_length);
       }
       Trial& t = pair[0];
-      if (!t.errors.better_than(errors)) {
+      if (!t.errors.better_than(errors) || sum - (t.errors.edge + t.errors.area) < kPolishStall * sum) {
         step_length *= 0.5;
         continue;
       }
