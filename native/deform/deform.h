@@ -4,7 +4,6 @@
 #pragma once
 
 #include <functional>
-#include <memory>
 #include <string>
 #include <vector>
 
@@ -12,8 +11,6 @@
 #include "mesh/mesh.h"
 
 namespace polycube {
-
-class FillReducingOrder;
 
 // Which Laplacian the Poisson solve uses. Every fixed point is an exact polycube
 // whatever the weights, so both reach the same shapes; they differ in cost and
@@ -108,11 +105,6 @@ struct DeformOptions {
   // true stops the run at the iteration it is in, keeping what it had; a
   // further run stopped is not kept (Esc in Blender).
   std::function<bool()> stop_requested;
-  // What the runs of one deform() share, made by the first that needs it:
-  // the fill-reducing order of the mesh's vertices that the untangling's
-  // Newton systems are eliminated in (untangle_flat_charts.h). deform()
-  // sets it when empty; a caller leaves it so.
-  std::shared_ptr<FillReducingOrder> vertex_order;
 };
 
 struct PhaseSeconds {

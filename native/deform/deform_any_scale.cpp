@@ -22,7 +22,6 @@
 #include "labels/nearest_labels.h"
 #include "labels/repair_charts.h"
 #include "labels/violation_score.h"
-#include "linear_algebra/fill_reducing_order.h"
 #include "mesh/check_input.h"
 #include "mesh/mesh_adjacency.h"
 #include "mesh/triangulate.h"
@@ -434,7 +433,6 @@ DeformResult deform(const PolygonMesh& input, const std::vector<int>& labels, co
     };
   DeformOptions unit_options = options;
   if (options.start.size() > 0) unit_options.start = unit.box().to_unit(options.start);
-  if (!unit_options.vertex_order) unit_options.vertex_order = std::make_shared<FillReducingOrder>();
   // What the run that gave `result` leaves for its polish, while at hand.
   std::unique_ptr<FinishedRun> finished;
   DeformResult result = deform_in_unit_box(mesh, labels, unit_options, unit_callback, finished);

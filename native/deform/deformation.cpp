@@ -47,7 +47,6 @@ Deformation::Deformation(const PolygonMesh& mesh, const std::vector<int>& labels
       centroids(component_centroids(mesh.vertices, parts)),
       quality(mesh.vertices, triangulation.triangles, triangle_labels),
       x(mesh.vertices) {
-  vertex_order = options.vertex_order ? options.vertex_order : std::make_shared<FillReducingOrder>();
   result.labels = filled_labels;
   result.unlabelled_faces = static_cast<int>(std::count(labels.begin(), labels.end(), kUnlabelled));
   result.triangles = static_cast<int>(triangles().rows());

@@ -14,13 +14,11 @@
 
 #include <chrono>
 #include <future>
-#include <memory>
 #include <vector>
 
 #include "deform/deform.h"
 #include "deform/quality.h"
 #include "linear_algebra/cotangent_weights.h"
-#include "linear_algebra/fill_reducing_order.h"
 #include "linear_algebra/laplacian.h"
 #include "linear_algebra/sparse_cholesky.h"
 #include "mesh/components.h"
@@ -102,8 +100,6 @@ struct Deformation {
   QualityMeasure quality;
   Vertices x;                         // the current positions
 
-  // The options' (shared by the runs of one deform()), or the run's own.
-  std::shared_ptr<FillReducingOrder> vertex_order;
   bool factorization_released = false;
   CotangentWeights weights;
   double shift = 0.0;

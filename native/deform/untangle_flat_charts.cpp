@@ -76,10 +76,6 @@ constexpr double kLocalMaxUses = 4;
 // rounds from 200).
 constexpr double kLocalCount = 200;
 constexpr double kLocalCountShare = 0.01;
-// In the order derived from the vertices' (header), unknowns of more
-// vertices than this are eliminated last: a chart's plane, eliminated at
-// its first vertex, would join every unknown around the chart.
-constexpr double kEliminatedLastFrom = 16;
 
 struct Triangle {
   std::array<std::array<int, 2>, 3> unknown;  // per corner: the unknowns of its two in-plane coordinates
@@ -188,8 +184,7 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
                                      const std::vector<int>& triangle_labels, int max_rounds, double local_share,
                                      const CollapseBound& bound, UntangleMinimiser minimiser,
                                      const std::function<bool()>& stop,
-                                     const std::function<void()>& before_global,
-                                     const std::function<const std::vector<int>&()>& vertex_rank) {
+                                     const std::function<void()>& before_global) {
   const int n = static_cast<int>(input.rows());
   const Eigen::Index count = triangles.rows();
   UntangledCharts result;
@@ -365,24 +360,6 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
   // Minimises the energy of `list` over the first `free_count` entries of
   // `at` (the others held); returns the energy reached.
   NewtonMinimizer global_newton;
-  // The global rounds' elimination order (header): each unknown at the
-  // first of its vertices in the vertices' order, those shared by more than
-  // a few vertices (chart planes) last, where they fill least.
-  const std::vector<int>* vertex_order = nullptr;
-  auto order_global_newton = [&]() {
-    if (!vertex_rank) return;
-    if (!vertex_order) vertex_order = &vertex_rank();
-    const std::vector<int>& vertex = *vertex_order;
-    if (static_cast<int>(vertex.size()) != n) return;
-    const int slots = static_cast<int>(y.size());
-    std::vector<int> rank(slots, std::numeric_limits<int>::max());
-    for (int v = 0; v < n; ++v)
-      for (int axis = 0; axis < 3; ++axis) {
-        const int s = slot[unknown_of(v, axis)];
-        rank[s] = slot_users[s] > kEliminatedLastFrom ? 3 * n + s : std::min(rank[s], 3 * vertex[v] + axis);
-      }
-    global_newton.eliminate_in(std::move(rank));
-  };
   auto minimize_over = [&](const std::vector<Triangle>& list, Eigen::VectorXd& at, int free_count,
                            NewtonMinimizer& newton) {
     if (!newton_rounds) {
@@ -523,7 +500,6 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
     if (!local) {
       if (before_global && !global_started) before_global();
       global_started = true;
-      if (newton_rounds) order_global_newton();
       reached = minimize_over(active, y, static_cast<int>(y.size()), global_newton);
     } else {
       ++result.local_rounds;

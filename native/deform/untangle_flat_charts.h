@@ -92,19 +92,11 @@ constexpr double kUntangleLocalShare = 0.002;
 // factorisation, where a round costs minutes at a million triangles).
 // `before_global`, when given, is called once before the first global round
 // (the caller's factors freed for Newton's, say: local rounds need little).
-// `vertex_rank`, when given, is asked once before the first global Newton
-// round for each vertex's place in a fill-reducing order of the mesh's
-// vertices (FillReducingOrder): the global rounds' systems then eliminate
-// their unknowns in the order of their vertices, the chart planes last,
-// instead of being ordered each (fandisk refined 64 times: 6.5 s an
-// ordering, two per untangling, against 2.4 s once for every run; its
-// factorisations as fast, 2.0-2.5 s).
 UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat, const Triangles& triangles,
                                      const std::vector<int>& triangle_labels, int max_rounds = kUntangleRounds,
                                      double local_share = kUntangleLocalShare, const CollapseBound& bound = {},
                                      UntangleMinimiser minimiser = UntangleMinimiser::automatic,
                                      const std::function<bool()>& stop = {},
-                                     const std::function<void()>& before_global = {},
-                                     const std::function<const std::vector<int>&()>& vertex_rank = {});
+                                     const std::function<void()>& before_global = {});
 
 }  // namespace polycube

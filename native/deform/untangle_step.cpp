@@ -18,11 +18,9 @@ UntangleStep untangle_step(RobustRun& run, const Vertices& flat, ChartPlanes& fa
     factored.release();
     run.chart_factors.reset();
   };
-  const auto vertex_rank = [&d]() -> const std::vector<int>& { return d.vertex_order->rank(d.laplacian.matrix()); };
   const UntangledCharts untangled =
       untangle_flat_charts(d.mesh.vertices, flat, d.triangles(), d.triangle_labels, kUntangleRounds,
-                           kUntangleLocalShare, bound, UntangleMinimiser::automatic, d.options.stop_requested, release,
-                           vertex_rank);
+                           kUntangleLocalShare, bound, UntangleMinimiser::automatic, d.options.stop_requested, release);
   opened.rounds = untangled.rounds;
   if (untangled.refused) return opened;
   opened.positions = d.place(untangled.positions);

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
-#include <utility>
 
 #include "linear_algebra/armijo_backtracking.h"
 #include "linear_algebra/sparse_cholesky.h"
@@ -41,22 +40,15 @@ struct NewtonMinimizer::System {
   SparseCholesky factor;
   bool analyzed = false;
 
-  // `rank`: the caller's elimination order (eliminate_in), or empty.
-  System(const std::vector<int>& unknowns, int k, int free_count, const std::vector<int>& rank)
+  System(const std::vector<int>& unknowns, int k, int free_count)
       : element_unknowns(unknowns), element_size(k), free(free_count), at(free_count) {
-    std::vector<int> eliminated(free);  // the unknown eliminated at each place
-    std::iota(eliminated.begin(), eliminated.end(), 0);
-    if (static_cast<int>(rank.size()) >= free) {
-      std::stable_sort(eliminated.begin(), eliminated.end(), [&](int a, int b) { return rank[a] < rank[b]; });
-    } else {
-      // The order of the pattern in the unknowns' own order.
-      std::iota(at.begin(), at.end(), 0);
-      build();
-      SparseCholesky order;
-      order.analyze(matrix, true);
-      const Eigen::VectorXi& indices = order.ordering().indices();
-      eliminated.assign(indices.data(), indices.data() + free);
-    }
+    std::iota(at.begin(), at.end(), 0);
+    build();
+    // The elimination order of the pattern in the unknowns' order, then
+    // the pattern again in it.
+    SparseCholesky order;
+    order.analyze(matrix, true);
+    const Eigen::VectorXi& eliminated = order.ordering().indices();
     for (int place = 0; place < free; ++place) at[eliminated[place]] = place;
     build();
   }
@@ -139,8 +131,6 @@ struct NewtonMinimizer::System {
 NewtonMinimizer::NewtonMinimizer() = default;
 NewtonMinimizer::~NewtonMinimizer() = default;
 
-void NewtonMinimizer::eliminate_in(std::vector<int> rank) { rank_ = std::move(rank); }
-
 NewtonResult NewtonMinimizer::minimize(const ElementObjective& objective, const std::vector<int>& element_unknowns,
                                        int element_size, int free, Eigen::VectorXd& x, int max_iterations,
                                        double gradient_tolerance, double relative_tolerance,
@@ -150,7 +140,7 @@ NewtonResult NewtonMinimizer::minimize(const ElementObjective& objective, const 
     // The old system (its factor the largest thing in memory at scale) goes
     // before the new one is built, not after.
     system_.reset();
-    system_ = std::make_unique<System>(element_unknowns, element_size, free, rank_);
+    system_ = std::make_unique<System>(element_unknowns, element_size, free);
   }
   System& s = *system_;
   Eigen::VectorXd gradient(x.size());

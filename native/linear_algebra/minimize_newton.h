@@ -58,16 +58,7 @@ class NewtonMinimizer {
                         int free, Eigen::VectorXd& x, int max_iterations, double gradient_tolerance = 1e-10,
                         double relative_tolerance = 1e-10, const std::function<bool()>& stop = {});
 
-  // The order in which the systems built from now on eliminate their free
-  // unknowns: `rank` per unknown, lower first (ties by index), instead of
-  // an ordering made for each system. Why: at scale that ordering (AMD's
-  // and METIS's, the better kept) costs three factorisations, and a caller
-  // whose unknowns follow a mesh's vertices can derive as good a one from
-  // an ordering of the mesh made once. Empty: an ordering per system.
-  void eliminate_in(std::vector<int> rank);
-
  private:
-  std::vector<int> rank_;
   struct System;
   std::unique_ptr<System> system_;
 };

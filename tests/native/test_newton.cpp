@@ -10,8 +10,6 @@
 #include <cstring>
 #include <fstream>
 #include <functional>
-#include <numeric>
-#include <random>
 #include <optional>
 #include <set>
 
@@ -19,8 +17,6 @@
 #include "deform/quality.h"
 #include "deform/untangle_flat_charts.h"
 #include "io/read_mesh.h"
-#include "linear_algebra/fill_reducing_order.h"
-#include "linear_algebra/laplacian.h"
 #include "linear_algebra/minimize_lbfgs.h"
 #include "linear_algebra/minimize_newton.h"
 #include "mesh/triangulate.h"
@@ -199,22 +195,28 @@ TEST(MinimizeNewton, FindsTheRosenbrockMinimumInFewIterations) {
   EXPECT_EQ(r.factorizations, r.iterations);
 }
 
-// Springs x_a - x_b = rest on a chain of n vertices, each vertex also tied
-// to the held one (its first) at its distance along the chain, so the
-// system is well conditioned at every size. Vertex i of the chain is
-// unknown n - 1 - i: the held one is the vector's tail.
-struct SpringChain {
-  explicit SpringChain(int n) : n(n) {
+// Held unknowns stay; a shared unknown (two corners of one element on the
+// same entry) sums its blocks: a chain of springs, each element a quadratic
+// (x_i - x_j - 1)^2 in two unknowns, solved exactly by one Newton step.
+// Springs x_a - x_b = rest on a chain, each vertex also tied to the held
+// one (its first) at its distance along the chain, so the system is well
+// conditioned at every size: the minimum (every spring at rest) in one
+// step, also past SparseCholesky's threshold (60,000 unknowns: CHOLMOD
+// where its plugin loads).
+TEST(MinimizeNewton, SolvesAQuadraticInOneStepAndHoldsTheRest) {
+  for (const int n : {50, 60'000}) {
+    // Per element: its two unknowns; rests alongside. Vertex i of the chain
+    // is unknown n - 1 - i: the held one is the vector's tail.
+    std::vector<int> elements;
+    std::vector<double> rests;
     for (int i = 0; i + 1 < n; ++i) {
-      add(n - 2 - i, n - 1 - i, 1.0);
-      if (i > 0) add(n - 1 - i, n - 1, i);
+      elements.insert(elements.end(), {n - 2 - i, n - 1 - i});
+      rests.push_back(1.0);
+      if (i > 0) elements.insert(elements.end(), {n - 1 - i, n - 1}), rests.push_back(i);
     }
-  }
-  void add(int a, int b, double rest) { elements.insert(elements.end(), {a, b}), rests.push_back(rest); }
-  // Handed over one element at a time, the smallest blocks there are; an
-  // element on one unknown twice has zero energy.
-  ElementObjective objective() const {
-    return [this](const Eigen::VectorXd& x, Eigen::VectorXd* g, const HessianSink* h) {
+    elements.push_back(3), elements.push_back(3), rests.push_back(0.0);  // on one unknown twice: zero energy
+    // Handed over one element at a time, the smallest blocks there are.
+    const ElementObjective springs = [&](const Eigen::VectorXd& x, Eigen::VectorXd* g, const HessianSink* h) {
       double f = 0.0;
       if (g) g->setZero(x.size());
       for (size_t e = 0; e < rests.size(); ++e) {
@@ -230,12 +232,10 @@ struct SpringChain {
       }
       return f;
     };
-  }
-  // Minimised from the held vertex at 5: every spring at rest, to 1e-9, in at most two iterations.
-  void expect_minimum(NewtonMinimizer& newton) const {
     Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
-    x[n - 1] = 5.0;
-    const NewtonResult r = newton.minimize(objective(), elements, 2, n - 1, x, 10, 1e-9, 0.0);
+    x[n - 1] = 5.0;  // the chain's first vertex, held
+    NewtonMinimizer newton;
+    const NewtonResult r = newton.minimize(springs, elements, 2, n - 1, x, 10, 1e-9, 0.0);
     EXPECT_TRUE(r.converged) << n;
     EXPECT_LE(r.iterations, 2) << n;
     EXPECT_EQ(x[n - 1], 5.0);
@@ -243,60 +243,6 @@ struct SpringChain {
     for (int i = 1; i < n; ++i) error = std::max(error, std::abs(x[n - 1 - i] - (5.0 + i)));
     EXPECT_LT(error, 1e-9) << n;
   }
-  int n;
-  std::vector<int> elements;  // per element: its two unknowns
-  std::vector<double> rests;
-};
-
-// Held unknowns stay; a shared unknown (two corners of one element on the
-// same entry) sums its blocks: the chain's quadratic, each element
-// (x_i - x_j - rest)^2 in two unknowns, solved exactly by one Newton step
-// (every spring at rest), also past SparseCholesky's threshold (60,000
-// unknowns: CHOLMOD where its plugin loads).
-TEST(MinimizeNewton, SolvesAQuadraticInOneStepAndHoldsTheRest) {
-  for (const int n : {50, 60'000}) {
-    SpringChain chain(n);
-    chain.add(3, 3, 0.0);
-    NewtonMinimizer newton;
-    chain.expect_minimum(newton);
-  }
-}
-
-// A caller's elimination order (eliminate_in) changes the factor, not the
-// minimum: the springs' quadratic above reached in one step in the reversed
-// order and in a shuffled one, below and past CHOLMOD's threshold, and the
-// systems built after it are ordered so too.
-TEST(MinimizeNewton, AGivenEliminationOrderReachesTheSameMinimum) {
-  for (const int n : {50, 60'000}) {
-    std::vector<int> reversed(n - 1), shuffled(n - 1);
-    for (int i = 0; i < n - 1; ++i) reversed[i] = n - 2 - i;
-    std::iota(shuffled.begin(), shuffled.end(), 0);
-    std::shuffle(shuffled.begin(), shuffled.end(), std::mt19937(7));
-    for (const std::vector<int>* rank : {&reversed, &shuffled}) {
-      SpringChain chain(n);
-      NewtonMinimizer newton;
-      newton.eliminate_in(*rank);
-      chain.expect_minimum(newton);
-      chain.add(0, n - 1, n - 1);  // one more spring, the same minimum: a second system, built after it
-      chain.expect_minimum(newton);
-    }
-  }
-}
-
-// The order of a mesh's vertices is a permutation, made once: a later call
-// with another pattern gets the first call's.
-TEST(FillReducingOrder, IsAPermutationMadeOnce) {
-  const PolygonMesh sphere = test_meshes::uv_sphere(16, 8);
-  const int n = static_cast<int>(sphere.vertices.rows());
-  FillReducingOrder order;
-  const std::vector<int> rank = order.rank(Laplacian(n, triangulate(sphere.vertices, sphere.faces).triangles).matrix());
-  ASSERT_EQ(static_cast<int>(rank.size()), n);
-  std::vector<int> sorted = rank;
-  std::sort(sorted.begin(), sorted.end());
-  for (int i = 0; i < n; ++i) ASSERT_EQ(sorted[i], i);
-  Eigen::SparseMatrix<double> other(3, 3);
-  other.setIdentity();
-  EXPECT_EQ(order.rank(other), rank);
 }
 
 // Hessians handed over in blocks of any size build the same system as all at
@@ -403,39 +349,6 @@ TEST(UntangleFlatCharts, NewtonAndLbfgsOpenTheSameTriangles) {
   EXPECT_LE(figures[1].collapsed_faces, figures[0].collapsed_faces + 2);
   EXPECT_LT(figures[1].area_error, figures[0].area_error + 0.005);
   EXPECT_LT(figures[1].edge_error, figures[0].edge_error + 0.005);
-}
-
-// Newton's global rounds in the order of the mesh's vertices (the chart
-// planes last) instead of an ordering made for each system: the order is
-// asked for once, and the same triangles open to the same figures.
-TEST(UntangleFlatCharts, NewtonInTheVerticesOrderOpensTheSameTriangles) {
-  const std::optional<FandiskFlat> f = fandisk_flat();
-  if (!f) GTEST_SKIP() << "fandisk.off is missing: run `make data`";
-  const int n = static_cast<int>(f->mesh.vertices.rows());
-  const QualityMeasure quality(f->mesh.vertices, f->t.triangles, f->labels);
-  FillReducingOrder order;
-  const Laplacian laplacian(n, f->t.triangles);
-  int asked = 0;
-  const std::function<const std::vector<int>&()> vertex_rank = [&]() -> const std::vector<int>& {
-    ++asked;
-    return order.rank(laplacian.matrix());
-  };
-  std::vector<UntangledCharts> runs;
-  std::vector<Figures> figures;
-  for (const bool ordered : {false, true}) {
-    runs.push_back(untangle_flat_charts(f->mesh.vertices, f->flat.first_positions, f->t.triangles, f->labels,
-                                        kUntangleRounds, kUntangleLocalShare, {}, UntangleMinimiser::newton, {}, {},
-                                        ordered ? vertex_rank : std::function<const std::vector<int>&()>{}));
-    figures.push_back(quality.measure(runs.back().positions));
-  }
-  EXPECT_EQ(asked, 1);
-  ASSERT_TRUE(runs[1].untangled);
-  EXPECT_GT(runs[1].factorizations, 0);
-  EXPECT_EQ(figures[1].flipped_faces, 0);
-  EXPECT_LT(figures[1].normal_deviation_max_deg, 1e-6);
-  EXPECT_LE(figures[1].collapsed_faces, figures[0].collapsed_faces + 2);
-  EXPECT_LT(std::abs(figures[1].edge_error - figures[0].edge_error), 0.002);
-  EXPECT_LT(std::abs(figures[1].area_error - figures[0].area_error), 0.002);
 }
 
 // The caller's stop is answered within one Newton iteration (a
