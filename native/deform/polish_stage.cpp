@@ -235,9 +235,11 @@ double rho(double u) { return std::sqrt(u * u + kSmoothing * kSmoothing); }  // 
 struct Errors {
   static constexpr double kNone = std::numeric_limits<double>::infinity();
   double edge = kNone, area = kNone, figure_edge = kNone, figure_area = kNone;
-  // Neither smooth error larger than `other`'s, their sum smaller.
+  // Neither smooth error larger than `other`'s, their sum smaller by at
+  // least kPolishStall of it (polish_stage.h: a step worth taking).
   bool better_than(const Errors& other) const {
-    return edge <= other.edge && area <= other.area && edge + area < other.edge + other.area;
+    const double sum = edge + area, other_sum = other.edge + other.area;
+    return edge <= other.edge && area <= other.area && sum < other_sum && other_sum - sum >= kPolishStall * other_sum;
   }
   // Neither figure larger than `other`'s, their sum smaller.
   bool better_figures_than(const Errors& other) const {
@@ -614,7 +616,7 @@ int polish_stage(RobustRun& run, std::unique_ptr<ChartPlanes> factored) {
         pair[0] = trial(step_length);
       }
       Trial& t = pair[0];
-      if (!t.errors.better_than(errors) || sum - (t.errors.edge + t.errors.area) < kPolishStall * sum) {
+      if (!t.errors.better_than(errors)) {
         step_length *= 0.5;
         continue;
       }
