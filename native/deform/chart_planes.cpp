@@ -63,6 +63,12 @@ ChartPlanes::ChartPlanes(int vertex_count, const Triangles& triangles, const std
 
 int ChartPlanes::root(int axis, int v) const { return sets_[axis].root(v); }
 
+std::vector<int> ChartPlanes::current_unknowns(int axis) const {
+  std::vector<int> of_root, unknown;
+  number_unknowns(axis, sets_[axis].size(), of_root, unknown);
+  return unknown;
+}
+
 void ChartPlanes::join(int axis, int a, int b) {
   if (sets_[axis].join(a, b)) {
     changed_[axis] = true;

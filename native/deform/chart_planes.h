@@ -108,6 +108,8 @@ class ChartPlanes {
   // Per vertex, its unknown of coordinate `axis` as of the last factorize():
   // vertices that share one move together, or the charts stop being flat.
   const std::vector<int>& unknowns(int axis) const { return unknown_[axis]; }
+  // The same as the planes stand now, factorised or not.
+  std::vector<int> current_unknowns(int axis) const;
 
  private:
   int root(int axis, int v) const;

@@ -68,13 +68,15 @@ DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>&
 }
 
 DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>& labels, const DeformOptions& options,
-                                const IterationCallback& callback, std::unique_ptr<FinishedRun>& finished) {
+                                const IterationCallback& callback, std::unique_ptr<FinishedRun>& finished,
+                                const Vertices& near) {
   check_run(mesh, labels, options);
   auto run = std::make_unique<FinishedRun>();
   run->options = options;
   run->labels = labels;
   run->callback = callback;
   run->deformation = std::make_unique<Deformation>(mesh, run->labels, run->options, run->callback);
+  run->deformation->near = near;
   DeformResult result = iterate(*run->deformation, run->planes);
   run->callback = nullptr;
   finished = std::move(run);

@@ -16,6 +16,7 @@
 #include "deform/recut_collapsed_faces.h"
 #include "deform/relabel_collapsed_faces.h"
 #include "deform/robust_run.h"
+#include "deform/untangle_flat_charts.h"
 #include "labels/axis.h"
 #include "labels/keep_valid_moves.h"
 #include "labels/label_energy.h"
@@ -145,8 +146,8 @@ void add_cost(DeformResult& into, const DeformResult& from) {
 // reaches it. Not converged unless it is an exact polycube with nothing
 // turned over and no more edges folded than the input's. What it leaves for a polish goes to `finished`.
 DeformResult silent_run(const PolygonMesh& mesh, const std::vector<int>& labels, const DeformOptions& options,
-                        std::unique_ptr<FinishedRun>& finished) {
-  DeformResult run = deform_in_unit_box(mesh, labels, options, IterationCallback{}, finished);
+                        std::unique_ptr<FinishedRun>& finished, const Vertices& near = Vertices()) {
+  DeformResult run = deform_in_unit_box(mesh, labels, options, IterationCallback{}, finished, near);
   run.converged = !run.stopped && run.converged && run.figures.flipped_faces == 0 &&
                   run.figures.folded_edges <= run.input_folded_edges;
   return run;
@@ -235,7 +236,13 @@ bool keep_if_better(const PolygonMesh& mesh, const RerunMesh& shared, const std:
   // factors would add to that run's peak.
   finished.reset();
   std::unique_ptr<FinishedRun> again_finished;
-  DeformResult again = silent_run(mesh, moved, options, again_finished);
+  // DeformOptions::rerun_from_result: at scale the run starts from the
+  // result, its charts moved past the relabelled faces (flatten_near,
+  // flatten_stage.h); from the input, each further run untangles a whole
+  // first solve again (fandisk refined 64 times: 30 of each further run's
+  // 42 s).
+  const bool near = options.rerun_from_result && shared.triangulation.triangles.rows() >= kUntangleNewtonFrom;
+  DeformResult again = silent_run(mesh, moved, options, again_finished, near ? result.positions : Vertices());
   const bool worse_errors = (budget.runs_left >= 0 || budget.bounded) &&
                             (again.figures.edge_error > kStalledErrorSlack * result.figures.edge_error ||
                              again.figures.area_error > kStalledErrorSlack * result.figures.area_error ||

@@ -113,6 +113,9 @@ struct Deformation {
   Vertices acceptable_x;
   std::vector<int> acceptable_labels;
   int untangled_at = 0;  // the iteration whose positions were untangled
+  // An exact polycube of labels that differ from these on a few faces, to
+  // flatten from before fitting (flatten_near, flatten_stage.h); empty: none.
+  Vertices near;
 
   // An iteration's time goes to its stage (StageSeconds), less its
   // measurement and the flattening and untangling it did, which are stages

@@ -32,8 +32,10 @@ struct FinishedRun {
   std::unique_ptr<ChartPlanes> planes;
 };
 
-// deform_in_unit_box() (deform.h), keeping what the run leaves in `finished`.
+// deform_in_unit_box() (deform.h), keeping what the run leaves in `finished`;
+// `near`, when not empty: Deformation::near.
 DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>& labels, const DeformOptions& options,
-                                const IterationCallback& callback, std::unique_ptr<FinishedRun>& finished);
+                                const IterationCallback& callback, std::unique_ptr<FinishedRun>& finished,
+                                const Vertices& near = Vertices());
 
 }  // namespace polycube

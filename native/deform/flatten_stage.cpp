@@ -2,6 +2,7 @@
 
 #include "deform/flatten_charts.h"
 #include "deform/robust_run.h"
+#include "deform/snap_to_charts.h"
 #include "deform/untangle_step.h"
 
 namespace polycube {
@@ -64,6 +65,49 @@ void flatten_stage(RobustRun& run, int iteration) {
   result.flat_iteration = iteration;
   result.collapsed_on_purpose = flat.collapsed_on_purpose;
   attempt.seconds = clock.lap();
+}
+
+bool flatten_near(RobustRun& run, const Vertices& near, int iteration) {
+  Deformation& d = run.d;
+  DeformResult& result = d.result;
+  if (run.planes) return false;
+  const StageTimer timer(result.stages.flatten, d.set_apart);
+  Stopwatch clock;
+  if (run.ordered_factor.valid()) run.ordered_factor.get();
+  // The run's charts, with the orderings (and the factor) made beside the
+  // input's factorisation; `ordered` stays for the run's own flattening.
+  auto planes = std::make_unique<ChartPlanes>(d.n, d.triangles(), d.triangle_labels);
+  if (run.ordered) planes->use_chart_factors(*run.ordered);
+  const Vertices flat = snap_to_charts(near, *planes);
+  CollapseBound bound;
+  bound.area = d.options.max_collapsed_share;
+  UntangleStep opened = untangle_step(run, flat, *planes, bound, true);
+  const double untangle_seconds = d.phase.lap();
+  result.seconds.solve += untangle_seconds;
+  const double collapsed = opened.fold_free ? d.quality.collapsed_area_fraction(opened.states) : 1.0;
+  const bool kept = opened.fold_free && collapsed <= d.options.max_collapsed_share;
+  result.flatten_attempts.push_back({iteration, 0, opened.fold_free ? 0 : opened.states.flipped_count,
+                                     opened.fold_free ? collapsed : 0.0, kept});
+  DeformResult::FlattenAttempt& attempt = result.flatten_attempts.back();
+  attempt.untangle_rounds = opened.rounds;
+  attempt.untangle_seconds = untangle_seconds;
+  if (!kept) {
+    attempt.seconds = clock.lap();
+    return false;
+  }
+  run.ordered.reset();
+  run.step_incidence.reset();
+  d.release_factorization();  // only the flat charts' systems are solved from here on
+  d.x = std::move(opened.positions);
+  run.state = std::move(opened.states);
+  run.planes = std::move(planes);
+  run.continuous.current_factorization.release();
+  result.untangled = true;
+  d.untangled_at = iteration;
+  result.flat_iteration = iteration;
+  run.last_attempt = iteration;
+  attempt.seconds = clock.lap();
+  return true;
 }
 
 }  // namespace polycube

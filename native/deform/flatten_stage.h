@@ -13,6 +13,8 @@
 // none once flat.
 #pragma once
 
+#include "mesh/mesh.h"
+
 namespace polycube {
 
 struct RobustRun;
@@ -20,5 +22,17 @@ struct RobustRun;
 constexpr int kMaxFlattenAttempts = 3;
 
 void flatten_stage(RobustRun& run, int iteration);
+
+// The flattening of a run whose labels differ on a few faces from those of
+// `near`, an exact, fold-free polycube (stage 8's further runs at scale,
+// docs/design.md section 2.6): `near` put on the run's charts
+// (snap_to_charts.h) and untangled by local rounds around what that leaves
+// without room (untangle_step.h), instead of fitting and flattening from the
+// input, whose untangling is several factorisations of the whole mesh per
+// round. Kept, as flatten_stage keeps a flat shape, when it is fold-free
+// and collapses no more than a flattening may; returns whether it was kept.
+// Not counted among the run's kMaxFlattenAttempts: a run that does not keep
+// it goes on from the input as any other.
+bool flatten_near(RobustRun& run, const Vertices& near, int iteration);
 
 }  // namespace polycube

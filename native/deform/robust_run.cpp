@@ -112,9 +112,20 @@ std::unique_ptr<ChartPlanes> robust_iteration(Deformation& d) {
   d.begin_iterations();
   DeformResult& result = d.result;
   bool exact = false;  // fitting done
-  int fit_iterations = 0, since_progress = 0;
+  int fit_iterations = 0, since_progress = 0, first = 1;
+  // From a polycube of nearly the same labels (stage 8 at scale), its first
+  // iteration when that flattens; else from the input as any run.
+  StageCost near_rest;  // what that iteration spends besides its flattening and measurement: nothing to speak of
+  if (d.near.size() > 0 && d.options.iterations > 0 && !result.converged) {
+    d.stage = &near_rest;
+    if (flatten_near(run, d.near, 1)) {
+      exact = true;
+      first = 2;
+      if (!d.finish_iteration(1, &run.state)) return std::move(run.planes);
+    }
+  }
   double best_max = run.state.max_deviation_deg;
-  for (int iteration = 1; iteration <= d.options.iterations && (!result.converged || (run.planes && !run.relaxed));
+  for (int iteration = first; iteration <= d.options.iterations && (!result.converged || (run.planes && !run.relaxed));
        ++iteration) {
     d.stage = run.planes ? &result.stages.relax : exact ? &result.stages.continuous : &result.stages.fit;
     if (run.planes) {

@@ -184,7 +184,7 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
                                      const std::vector<int>& triangle_labels, int max_rounds, double local_share,
                                      const CollapseBound& bound, UntangleMinimiser minimiser,
                                      const std::function<bool()>& stop,
-                                     const std::function<void()>& before_global) {
+                                     const std::function<void()>& before_global, bool local_only) {
   const int n = static_cast<int>(input.rows());
   const Eigen::Index count = triangles.rows();
   UntangledCharts result;
@@ -478,14 +478,18 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
   if (newton_rounds) {
     double smallest = 0.0;
     const std::vector<int> no_room = without_room(y, smallest);
-    if (!(smallest < -kRoom) && !no_room.empty()) {
+    if ((local_only || !(smallest < -kRoom)) && !no_room.empty()) {
       seed_with(no_room);
       only_local = true;
+    }
+    if (local_only && no_room.empty()) {
+      result.untangled = true;
+      return result;
     }
   }
   double previous = std::numeric_limits<double>::infinity();
   size_t last_no_room = 0;
-  bool global_started = false;
+  bool global_started = false, finishing = false;
   // The caller's stop ends the rounds, the result refused (header).
   auto stopped = [&]() {
     result.stopped = result.stopped || (stop && stop());
@@ -519,7 +523,17 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
     if (only_local || few(no_room.size())) seed_with(no_room);
     previous = reached;
     result.untangled = no_room.empty();
-    if (no_room.empty() && only_local) break;
+    // `local_only`: one global round to finish, as the map may have moved
+    // far from the caller's around the triangles opened (a polycube of other
+    // labels). Fandisk refined 64 times, stage 8's further runs: edge and area
+    // error 0.1055 / 0.1478 without it, 0.1049 / 0.1421 with it.
+    if (finishing && !local) break;
+    if (no_room.empty() && only_local && local_only) {
+      only_local = false;
+      finishing = true;
+    } else if (no_room.empty() && only_local) {
+      break;
+    }
     if (no_room.empty()) {
       // The last round is global: the map away from the triangles that
       // were without room is minimised as before.

@@ -92,11 +92,17 @@ constexpr double kUntangleLocalShare = 0.002;
 // factorisation, where a round costs minutes at a million triangles).
 // `before_global`, when given, is called once before the first global round
 // (the caller's factors freed for Newton's, say: local rounds need little).
+// `local_only`: with Newton's rounds, local rounds from the start,
+// turned-over triangles included, as for a map that turns nothing over
+// (above), and once every triangle has room one global round to finish;
+// `flat` is returned as it is when every triangle has room from the start.
+// For a map that is an untangled polycube but for a few faces (stage 8's
+// further runs from the result, docs/design.md section 2.6).
 UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat, const Triangles& triangles,
                                      const std::vector<int>& triangle_labels, int max_rounds = kUntangleRounds,
                                      double local_share = kUntangleLocalShare, const CollapseBound& bound = {},
                                      UntangleMinimiser minimiser = UntangleMinimiser::automatic,
                                      const std::function<bool()>& stop = {},
-                                     const std::function<void()>& before_global = {});
+                                     const std::function<void()>& before_global = {}, bool local_only = false);
 
 }  // namespace polycube

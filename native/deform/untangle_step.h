@@ -31,7 +31,9 @@ struct UntangleStep {
   int rounds = 0;  // of untangle_flat_charts
 };
 
-// Its time is a stage of its own (StageSeconds::untangle).
-UntangleStep untangle_step(RobustRun& run, const Vertices& flat, ChartPlanes& factored, const CollapseBound& bound);
+// Its time is a stage of its own (StageSeconds::untangle). `local_only`:
+// untangle_flat_charts's.
+UntangleStep untangle_step(RobustRun& run, const Vertices& flat, ChartPlanes& factored, const CollapseBound& bound,
+                           bool local_only = false);
 
 }  // namespace polycube

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <memory>
 #include <set>
 
@@ -17,6 +18,7 @@
 #include "deform/deform.h"
 #include "deform/flatten_charts.h"
 #include "deform/quality.h"
+#include "deform/snap_to_charts.h"
 #include "io/read_mesh.h"
 #include "labels/axis.h"
 #include "labels/nearest_labels.h"
@@ -71,6 +73,29 @@ Eigen::SparseMatrix<double> shifted_laplacian(const Block& s, double* shift = nu
 
 // From a noisy block, the nearest flat-chart shape has every normal exactly
 // on its axis, and moves the vertices about as much as the noise.
+// The noisy block with one vertex of each chart moved off its plane by
+// more than the noise: every chart goes back to the plane most of its
+// vertices share, the coordinates off the planes untouched.
+TEST(SnapToCharts, PutsEachChartOnTheMedianOfItsVertices) {
+  const Block s = noisy_l_block(0.0);
+  ChartPlanes planes(static_cast<int>(s.x.rows()), s.triangles, s.labels);
+  Vertices moved = s.x;
+  std::array<std::vector<int>, 3> unknown;
+  for (int axis = 0; axis < 3; ++axis) unknown[axis] = planes.current_unknowns(axis);
+  std::array<std::map<int, int>, 3> members;
+  for (Eigen::Index v = 0; v < moved.rows(); ++v)
+    for (int axis = 0; axis < 3; ++axis) ++members[axis][unknown[axis][v]];
+  std::array<std::set<int>, 3> touched;
+  for (Eigen::Index v = 0; v < moved.rows(); ++v)
+    for (int axis = 0; axis < 3; ++axis)
+      if (members[axis][unknown[axis][v]] >= 3 && touched[axis].insert(unknown[axis][v]).second)
+        moved(v, axis) += 0.3;
+  const Vertices snapped = snap_to_charts(moved, planes);
+  EXPECT_LT(worst_normal_error(snapped, s), 1e-12);
+  EXPECT_LT((snapped - s.x).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_GT(worst_normal_error(moved, s), 0.1);
+}
+
 TEST(ChartPlanes, FlattensEveryChartExactly) {
   const Block s = noisy_l_block(0.05);
   ASSERT_GT(worst_normal_error(s.x, s), 0.01);

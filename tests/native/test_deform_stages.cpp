@@ -164,6 +164,34 @@ TEST(DeformStages, FlattenStageMakesEveryChartFlatAndFoldFree) {
   EXPECT_EQ(d.result.flatten_attempts.size(), attempts);
 }
 
+TEST(DeformStages, FlattenNearUntanglesAPolycubeOfTheSameChartsInsteadOfFitting) {
+  SKIP_IF_MISSING(b0());
+  Flattened b0_flat(b0());  // a polycube of B0's labels, 4 slivers collapsed
+  ASSERT_TRUE(b0_flat.run.planes);
+  const int collapsed = count(b0_flat.run.state.collapsed);
+  ASSERT_GT(collapsed, 0);
+  Case c = b0();
+  Deformation d(c.mesh, c.labels, c.options, c.callback);
+  RobustRun run(d);
+  ASSERT_TRUE(flatten_near(run, b0_flat.d.x, 1));
+  EXPECT_EQ(run.flatten_attempts, 0);  // not one of the run's own attempts
+  ASSERT_TRUE(run.planes);
+  ASSERT_EQ(d.result.flatten_attempts.size(), 1u);
+  const DeformResult::FlattenAttempt& attempt = d.result.flatten_attempts.back();
+  EXPECT_EQ(attempt.rounds, 0);  // no linear solve
+  EXPECT_GT(attempt.untangle_rounds, 0);
+  EXPECT_TRUE(attempt.kept);
+  EXPECT_EQ(d.result.flat_iteration, 1);
+  EXPECT_TRUE(d.factorization_released);
+  const Figures near = figures_of(d);
+  EXPECT_LT(near.normal_deviation_max_deg, 1e-6);
+  EXPECT_EQ(near.flipped_faces, 0);
+  EXPECT_EQ(near.folded_edges, 0);
+  EXPECT_LT(near.collapsed_faces, collapsed);
+  // Once flat, it is not tried again.
+  EXPECT_FALSE(flatten_near(run, b0_flat.d.x, 2));
+}
+
 TEST(DeformStages, RelaxStageCutsEdgeErrorAndUntanglesWhileStayingExact) {
   SKIP_IF_MISSING(b0());
   Flattened b0_flat(b0());

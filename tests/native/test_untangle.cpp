@@ -251,6 +251,38 @@ TEST(UntangleFlatCharts, ManySliversAtScaleAreOpenedLocallyToo) {
   EXPECT_GT(far, 300);
 }
 
+TEST(UntangleFlatCharts, LocalOnlyOpensTurnedOverTrianglesLocallyThenFinishesWithOneGlobalRound) {
+  // The block with a vertex of its top moved past its neighbour: triangles
+  // turn over, so Newton's rounds would be global from the start. With
+  // `local_only` (stage 8's runs from the result) they are local until
+  // every triangle has room, then one global round finishes.
+  const Block b = block(16, 16, 8);
+  Vertices crushed = b.vertices;
+  for (Eigen::Index v = 0; v < crushed.rows(); ++v)
+    if (crushed(v, 0) == 8.0 && crushed(v, 1) == 8.0 && crushed(v, 2) == 8.0) crushed(v, 0) = 9.5;
+  const QualityMeasure quality(b.vertices, b.triangles, b.labels);
+  ASSERT_GT(quality.measure(crushed).flipped_faces, 0);
+  ASSERT_TRUE(flat(crushed, b));
+  int before_global = 0;
+  const UntangledCharts u =
+      untangle_flat_charts(b.vertices, crushed, b.triangles, b.labels, kUntangleRounds, kUntangleLocalShare, {},
+                           UntangleMinimiser::newton, {}, [&] { ++before_global; }, true);
+  EXPECT_TRUE(u.untangled);
+  EXPECT_GT(u.local_rounds, 0);
+  EXPECT_EQ(u.rounds, u.local_rounds + 1);
+  EXPECT_EQ(before_global, 1);
+  EXPECT_TRUE(flat(u.positions, b));
+  const Figures after = quality.measure(u.positions);
+  EXPECT_EQ(after.flipped_faces, 0);
+  EXPECT_EQ(after.collapsed_faces, 0);
+  // A map whose every triangle has room is returned as it is.
+  const UntangledCharts same = untangle_flat_charts(b.vertices, b.vertices, b.triangles, b.labels, kUntangleRounds,
+                                                    kUntangleLocalShare, {}, UntangleMinimiser::newton, {}, {}, true);
+  EXPECT_TRUE(same.untangled);
+  EXPECT_EQ(same.rounds, 0);
+  EXPECT_EQ(same.positions, b.vertices);
+}
+
 TEST(UntangleFlatCharts, StopsOnceTheCollapsesPassTheCallersBound) {
   // The block with a triangle facing the wrong way (above): it ends on a
   // line. Bounded at no triangle on a line, the rounds stop when it is put

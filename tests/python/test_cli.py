@@ -247,3 +247,29 @@ def test_real_model_both_variants(program, tmp_path):
         report = json.loads(result.stdout)
         assert result.returncode == 0 and report["iterations"] == 20
         assert all(np.isfinite(report[k]) for k in ("edge_error", "area_error", "normal_deviation_max_deg"))
+
+
+def test_rerun_from_result_at_scale(program, tmp_path):
+    # Fandisk refined 16 times (207,136 triangles), nearest labels: the first
+    # run's flattening is untangled from its linear solve and collapses
+    # faces; with --rerun-from-result stage 8's further runs start from that
+    # result (no linear solve: zero rounds) and are kept, exact, each
+    # collapsing less (docs/design.md section 2.6, stage 8).
+    fandisk = MESHES / "fandisk.off"
+    if not fandisk.exists():
+        pytest.skip("run `make data`")
+    refined = tmp_path / "fandisk-x16.ply"
+    result = run(program, "refine", fandisk, "--levels", 2, "--scheme", "bilinear", "--output", refined)
+    assert result.returncode == 0, result.stderr
+    result = run(program, "deform", refined, "--iterations", 50, "--rerun-from-result")
+    assert result.returncode == 0, result.stderr
+    report = json.loads(result.stdout)
+    assert report["triangles"] == 207136
+    attempts = report["flatten_attempts"]
+    assert attempts[0]["rounds"] > 0
+    further = [a for a in attempts[1:] if a["kept"]]
+    assert len(further) >= 2 and all(a["rounds"] == 0 and a["untangle_rounds"] > 0 for a in further)
+    assert report["second_run_iterations"] > 0 and report["relabelled_faces_count"] > 0
+    assert report["converged"] and report["flipped_faces"] == 0
+    assert report["folded_edges"] <= report["input_folded_edges"]
+    assert report["collapsed_area"] < 1e-4
