@@ -57,6 +57,12 @@ class DeformSettings(LabelSettings):
     variant: EnumProperty(
         name="Solver", description="How the solver steps towards the polycube",
         items=variant_items(), default=DEFAULT_VARIANT.upper())
+    rerun_from_result: BoolProperty(
+        name="Quick Further Runs",
+        description="Robust solver, 100,000 triangles and more: the runs that relabel collapsed faces start "
+                    "from the result instead of the input, untangled only around those faces. Several times "
+                    "faster on large meshes; a somewhat different polycube",
+        default=False)
     keep: EnumProperty(
         name="Keep", description="Which iterations become shape keys",
         items=(
@@ -103,6 +109,8 @@ class DeformSettings(LabelSettings):
         column.prop(self, "iterations")
         column.prop(self, "tolerance")
         column.prop(self, "variant")
+        if self.variant == 'ROBUST':
+            column.prop(self, "rerun_from_result")
         column.prop(self, "keep")
         if self.keep == 'EVERY':
             column.prop(self, "keep_every")

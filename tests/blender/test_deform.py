@@ -128,6 +128,25 @@ def test_current_variant():
     assert final["normal_deviation_mean_deg"] < 0.2 * start["normal_deviation_mean_deg"], (start, final)
 
 
+def test_quick_further_runs_reach_the_solver():
+    # Off by default; the operator's setting is the module's rerun_from_result.
+    sphere = labelled_sphere()
+    native = polycube.polycube_native
+    original, seen = native.deform, []
+
+    def spy(*args, **kwargs):
+        seen.append(kwargs.get("rerun_from_result"))
+        return original(*args, **kwargs)
+
+    native.deform = spy
+    try:
+        assert deform(sphere, iterations=5) == {'FINISHED'}
+        assert deform(sphere, iterations=5, rerun_from_result=True) == {'FINISHED'}
+    finally:
+        native.deform = original
+    assert seen == [False, True]
+
+
 def test_same_settings_same_keys():
     sphere = labelled_sphere()
     deform(sphere, iterations=15, tolerance=1e-4, variant='FIXED')
@@ -181,7 +200,8 @@ def test_scene_settings_match_the_operator_defaults():
     # The sidebar's copy of the settings starts where the operator does.
     operator = bpy.ops.object.polycube_deform.get_rna_type().properties
     settings = bpy.context.scene.polycube
-    for name in ("iterations", "tolerance", "variant", "keep", "keep_every", "animate", "start_frame",
+    for name in ("iterations", "tolerance", "variant", "rerun_from_result", "keep", "keep_every", "animate",
+                 "start_frame",
                  "label_source", "detail", "subdivide", "subdivide_levels", "subdivide_scheme"):
         assert getattr(settings, name) == operator[name].default, name
 
