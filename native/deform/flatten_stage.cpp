@@ -74,6 +74,7 @@ bool flatten_near(RobustRun& run, const Vertices& near, int iteration) {
   const StageTimer timer(result.stages.flatten, d.set_apart);
   Stopwatch clock;
   if (run.ordered_factor.valid()) run.ordered_factor.get();
+  d.release_factorization();  // not beside Newton's; restored below unless kept
   // The run's charts, with the orderings (and the factor) made beside the
   // input's factorisation; `ordered` stays for the run's own flattening.
   auto planes = std::make_unique<ChartPlanes>(d.n, d.triangles(), d.triangle_labels);
@@ -92,12 +93,13 @@ bool flatten_near(RobustRun& run, const Vertices& near, int iteration) {
   attempt.untangle_rounds = opened.rounds;
   attempt.untangle_seconds = untangle_seconds;
   if (!kept) {
+    d.restore_factorization();  // the run goes on from the input
+    result.seconds.factorize += d.phase.lap();
     attempt.seconds = clock.lap();
     return false;
   }
   run.ordered.reset();
   run.step_incidence.reset();
-  d.release_factorization();  // only the flat charts' systems are solved from here on
   d.x = std::move(opened.positions);
   run.state = std::move(opened.states);
   run.planes = std::move(planes);

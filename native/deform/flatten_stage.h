@@ -32,7 +32,9 @@ void flatten_stage(RobustRun& run, int iteration);
 // round. Kept, as flatten_stage keeps a flat shape, when it is fold-free
 // and collapses no more than a flattening may; returns whether it was kept.
 // Not counted among the run's kMaxFlattenAttempts: a run that does not keep
-// it goes on from the input as any other.
+// it goes on from the input as any other. The input's factor is freed
+// meanwhile, as by flatten_stage (fandisk refined 16 times: peak 697 -> 625
+// MiB), and factorised again when it is not kept.
 bool flatten_near(RobustRun& run, const Vertices& near, int iteration);
 
 }  // namespace polycube
