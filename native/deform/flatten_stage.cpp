@@ -6,6 +6,20 @@
 #include "deform/untangle_step.h"
 
 namespace polycube {
+namespace {
+
+// A flat shape kept at `iteration`: the run's positions, states and planes;
+// from here on only the flat charts' systems are solved.
+void keep_flat(RobustRun& run, Vertices positions, FaceStates states, std::unique_ptr<ChartPlanes> planes,
+               int iteration) {
+  run.d.x = std::move(positions);
+  run.state = std::move(states);
+  run.planes = std::move(planes);
+  run.continuous.current_factorization.release();
+  run.d.result.flat_iteration = iteration;
+}
+
+}  // namespace
 
 void flatten_stage(RobustRun& run, int iteration) {
   if (run.planes || run.flatten_attempts >= kMaxFlattenAttempts) return;
@@ -57,12 +71,7 @@ void flatten_stage(RobustRun& run, int iteration) {
     attempt.seconds = clock.lap();
     return;
   }
-  d.x = std::move(flat.positions);
-  run.state = std::move(flat.states);
-  run.planes = std::move(flat.planes);
-  // From here on only the flat charts' systems are solved.
-  run.continuous.current_factorization.release();
-  result.flat_iteration = iteration;
+  keep_flat(run, std::move(flat.positions), std::move(flat.states), std::move(flat.planes), iteration);
   result.collapsed_on_purpose = flat.collapsed_on_purpose;
   attempt.seconds = clock.lap();
 }
@@ -100,13 +109,9 @@ bool flatten_near(RobustRun& run, const Vertices& near, int iteration) {
   }
   run.ordered.reset();
   run.step_incidence.reset();
-  d.x = std::move(opened.positions);
-  run.state = std::move(opened.states);
-  run.planes = std::move(planes);
-  run.continuous.current_factorization.release();
+  keep_flat(run, std::move(opened.positions), std::move(opened.states), std::move(planes), iteration);
   result.untangled = true;
   d.untangled_at = iteration;
-  result.flat_iteration = iteration;
   run.last_attempt = iteration;
   attempt.seconds = clock.lap();
   return true;

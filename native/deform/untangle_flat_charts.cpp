@@ -528,11 +528,10 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
     // labels). Fandisk refined 64 times, stage 8's further runs: edge and area
     // error 0.1055 / 0.1478 without it, 0.1049 / 0.1421 with it.
     if (finishing && !local) break;
-    if (no_room.empty() && only_local && local_only) {
+    if (no_room.empty() && only_local) {
+      if (!local_only) break;
       only_local = false;
       finishing = true;
-    } else if (no_room.empty() && only_local) {
-      break;
     }
     if (no_room.empty()) {
       // The last round is global: the map away from the triangles that
