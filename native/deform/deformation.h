@@ -114,7 +114,8 @@ struct Deformation {
   std::vector<int> acceptable_labels;
   int untangled_at = 0;  // the iteration whose positions were untangled
   // An exact polycube of labels that differ from these on a few faces, to
-  // flatten from before fitting (flatten_near, flatten_stage.h); empty: none.
+  // flatten from before fitting (flatten_near, flatten_stage.h); empty: none,
+  // or read already (freed once the run's first iteration has tried it).
   Vertices near;
 
   // An iteration's time goes to its stage (StageSeconds), less its

@@ -40,14 +40,24 @@ struct NewtonMinimizer::System {
   SparseCholesky factor;
   bool analyzed = false;
 
-  System(const std::vector<int>& unknowns, int k, int free_count)
+  // `keys`: NewtonMinimizer::order_next_by's, or empty.
+  System(const std::vector<int>& unknowns, int k, int free_count, const std::vector<int>& keys)
       : element_unknowns(unknowns), element_size(k), free(free_count), at(free_count) {
     std::iota(at.begin(), at.end(), 0);
     build();
-    // The elimination order of the pattern in the unknowns' order, then
-    // the pattern again in it.
+    // The elimination order of the pattern in the unknowns' order (the
+    // keys' postordered by the analysis, which gathers its supernodes),
+    // then the pattern again in it.
     SparseCholesky order;
-    order.analyze(matrix, true);
+    if (static_cast<int>(keys.size()) == free) {
+      SparseCholesky::Ordering by_keys(free);
+      std::iota(by_keys.indices().data(), by_keys.indices().data() + free, 0);
+      std::stable_sort(by_keys.indices().data(), by_keys.indices().data() + free,
+                       [&keys](int a, int b) { return keys[a] < keys[b]; });
+      order.analyze(matrix, by_keys);
+    } else {
+      order.analyze(matrix, true);
+    }
     const Eigen::VectorXi& eliminated = order.ordering().indices();
     for (int place = 0; place < free; ++place) at[eliminated[place]] = place;
     build();
@@ -131,6 +141,10 @@ struct NewtonMinimizer::System {
 NewtonMinimizer::NewtonMinimizer() = default;
 NewtonMinimizer::~NewtonMinimizer() = default;
 
+std::vector<int> NewtonMinimizer::places() const { return system_ ? system_->at : std::vector<int>(); }
+
+void NewtonMinimizer::order_next_by(std::vector<int> keys) { next_keys_ = std::move(keys); }
+
 NewtonResult NewtonMinimizer::minimize(const ElementObjective& objective, const std::vector<int>& element_unknowns,
                                        int element_size, int free, Eigen::VectorXd& x, int max_iterations,
                                        double gradient_tolerance, double relative_tolerance,
@@ -140,7 +154,8 @@ NewtonResult NewtonMinimizer::minimize(const ElementObjective& objective, const 
     // The old system (its factor the largest thing in memory at scale) goes
     // before the new one is built, not after.
     system_.reset();
-    system_ = std::make_unique<System>(element_unknowns, element_size, free);
+    system_ = std::make_unique<System>(element_unknowns, element_size, free, next_keys_);
+    next_keys_.clear();
   }
   System& s = *system_;
   Eigen::VectorXd gradient(x.size());
