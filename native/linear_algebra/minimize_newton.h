@@ -64,7 +64,8 @@ class NewtonMinimizer {
   // The next system that is not the last one is ordered by `keys` (one per
   // free unknown, the lowest eliminated first, ties in the unknowns' order)
   // instead of by a fill-reducing ordering of its own, when their sizes
-  // agree. For a system that is the last one with some of its unknowns
+  // agree and its factor is not much larger than the last system's
+  // (minimize_newton.cpp). For a system that is the last one with some of its unknowns
   // joined: each joined unknown keyed by the latest place of those it
   // joins keeps the last ordering's fill, where ordering it afresh costs
   // as much as several factorisations (docs/design.md section 2.6, stage 7).

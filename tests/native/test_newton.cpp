@@ -10,7 +10,9 @@
 #include <cstring>
 #include <fstream>
 #include <functional>
+#include <numeric>
 #include <optional>
+#include <random>
 #include <set>
 
 #include "deform/barrier_energy.h"
@@ -293,6 +295,24 @@ TEST(MinimizeNewton, HessiansInBlocksGiveTheSameStepsBitForBit) {
   }
 }
 
+// Springs (x_a - x_b - rest)^2, an element per pair of `elements` with its
+// rest in `rests` (both read when called: elements added later count).
+ElementObjective springs_at_rest(const std::vector<int>& elements, const std::vector<double>& rests) {
+  return [&elements, &rests](const Eigen::VectorXd& x, Eigen::VectorXd* g, const HessianSink* h) {
+    double f = 0.0;
+    if (g) g->setZero(x.size());
+    for (size_t e = 0; e < rests.size(); ++e) {
+      const int a = elements[2 * e], b = elements[2 * e + 1];
+      const double r = x[a] - x[b] - rests[e];
+      f += r * r;
+      if (g) (*g)[a] += 2.0 * r, (*g)[b] -= 2.0 * r;
+      const double block[4] = {2.0, -2.0, -2.0, 2.0};
+      if (h) (*h)(e, 1, block);
+    }
+    return f;
+  };
+}
+
 // The next system ordered by the caller's keys (the untangling's after
 // triangles are put on a line: its last ordering, kept) instead of its own
 // fill-reducing ordering: eliminated in the keys' order, to the same
@@ -308,19 +328,7 @@ TEST(MinimizeNewton, OrdersTheNextSystemByTheCallersKeys) {
     for (int i = 0; i + 1 < n; ++i) elements.insert(elements.end(), {i, i + 1}), rests.push_back(1.0);
     // Each unknown also tied to the held one: well conditioned at every size.
     for (int i = 0; i + 2 < n; ++i) elements.insert(elements.end(), {i, n - 1}), rests.push_back(n - 1 - i);
-    const auto springs = [&](const Eigen::VectorXd& x, Eigen::VectorXd* g, const HessianSink* h) {
-      double f = 0.0;
-      if (g) g->setZero(x.size());
-      for (size_t e = 0; e < rests.size(); ++e) {
-        const int a = elements[2 * e], b = elements[2 * e + 1];
-        const double r = x[a] - x[b] - rests[e];
-        f += r * r;
-        if (g) (*g)[a] += 2.0 * r, (*g)[b] -= 2.0 * r;
-        const double block[4] = {2.0, -2.0, -2.0, 2.0};
-        if (h) (*h)(e, 1, block);
-      }
-      return f;
-    };
+    const ElementObjective springs = springs_at_rest(elements, rests);
     NewtonMinimizer newton;
     Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
     newton.minimize(springs, elements, 2, n - 1, x, 10, 1e-9, 0.0);
@@ -343,6 +351,44 @@ TEST(MinimizeNewton, OrdersTheNextSystemByTheCallersKeys) {
     EXPECT_NE(fresh.places(), keys) << n << ": the keys are not what a fresh ordering gives anyway";
     EXPECT_LT((keyed - own).lpNorm<Eigen::Infinity>(), 1e-8 * n) << n;
   }
+}
+
+// Keys whose order would fill the factor far more than the last system's
+// are not taken: the system is ordered afresh. A grid of springs (each
+// unknown tied to a held one too); keyed by a shuffle of its unknowns, whose
+// factor is many times AMD's, it keeps an ordering of its own; keyed by the
+// last system's places, it takes them.
+TEST(MinimizeNewton, OrdersAfreshWhereTheKeysWouldFillTheFactor) {
+  const int side = 60, n = side * side + 1, held = n - 1;
+  std::vector<int> elements;
+  for (int i = 0; i < side; ++i)
+    for (int j = 0; j < side; ++j) {
+      const int v = i * side + j;
+      if (j + 1 < side) elements.insert(elements.end(), {v, v + 1});
+      if (i + 1 < side) elements.insert(elements.end(), {v, v + side});
+      elements.insert(elements.end(), {v, held});
+    }
+  std::vector<double> rests(elements.size() / 2, 1.0);
+  const ElementObjective springs = springs_at_rest(elements, rests);
+  NewtonMinimizer newton;
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+  newton.minimize(springs, elements, 2, n - 1, x, 5, 1e-9, 0.0);
+  const std::vector<int> own = newton.places();
+
+  std::vector<int> shuffled(n - 1);
+  std::iota(shuffled.begin(), shuffled.end(), 0);
+  std::mt19937 random(7);
+  std::shuffle(shuffled.begin(), shuffled.end(), random);
+  elements.insert(elements.end(), {0, held}), rests.push_back(1.0);  // another system, the same pattern
+  newton.order_next_by(shuffled);
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(n);
+  EXPECT_TRUE(newton.minimize(springs, elements, 2, n - 1, y, 5, 1e-9, 0.0).converged);
+  EXPECT_NE(newton.places(), shuffled) << "the shuffled keys were taken";
+
+  elements.insert(elements.end(), {1, held}), rests.push_back(1.0);
+  newton.order_next_by(own);
+  newton.minimize(springs, elements, 2, n - 1, y, 5, 1e-9, 0.0);
+  EXPECT_EQ(newton.places(), own) << "keys as good as the last system's were not taken";
 }
 
 // A real untangling: fandisk's flat charts from its nearest-axis labels (the
