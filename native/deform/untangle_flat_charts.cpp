@@ -45,11 +45,7 @@ constexpr double kNewtonSettled = 1e-3;
 // system (minimize_newton.h) at once: 4.7 MB, where the whole mesh's at
 // once took 36 numbers per triangle beside the factor.
 constexpr long kHessianBlock = 1L << 14;
-// A global round's Newton system is ordered from the last one's when at
-// most this share of its unknowns was joined since (below); past it, the
-// joined unknowns, eliminated late, fill the factor (armadillo refined 4
-// times joins 10,196 of 184,328 at once, then 1,548, 204, 50).
-constexpr double kKeptOrderJoins = 0.01;
+// From this many triangles on, the rounds are Newton's (automatic, header).
 // Room: a determinant (area over scaled input area) above this. Far below
 // the collapsed threshold (quality.h), far above rounding: triangles that
 // the charts hold on a line through a chain of shared unknowns come out
@@ -393,28 +389,6 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
     return run.value;
   };
 
-  // A global round after a few triangles were put on a line is ordered as
-  // the last global round was, each slot at the latest place of the slots
-  // it joins (NewtonMinimizer::order_next_by): fandisk refined 64 times
-  // joins 1,649 of 821,870 unknowns, whose ordering afresh took 4.2 s.
-  // Where many are joined (the last resort's lines: tens of thousands)
-  // the joined slots, eliminated late, fill the factor, and the ordering
-  // is made afresh (docs/design.md section 2.6, stage 7).
-  std::vector<int> slot_at_last_global;
-  int slots_at_last_global = 0;
-  auto order_like_last_global = [&]() {
-    const int slots = static_cast<int>(y.size());
-    const bool few_joined = slots_at_last_global - slots <= kKeptOrderJoins * slots_at_last_global;
-    if (!slot_at_last_global.empty() && slot != slot_at_last_global && few_joined) {
-      const std::vector<int> places = global_newton.places();
-      std::vector<int> keys(y.size(), -1);
-      for (int u = 0; u < unknowns; ++u) keys[slot[u]] = std::max(keys[slot[u]], places[slot_at_last_global[u]]);
-      global_newton.order_next_by(std::move(keys));
-    }
-    slot_at_last_global = slot;
-    slots_at_last_global = slots;
-  };
-
   // A local round: only the unknowns within a few rings of the triangles
   // left without room move, the rest (and every plane shared by more than
   // a few vertices) held; only the triangles they touch are evaluated.
@@ -530,7 +504,6 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
     if (!local) {
       if (before_global && !global_started) before_global();
       global_started = true;
-      if (newton_rounds) order_like_last_global();
       reached = minimize_over(active, y, static_cast<int>(y.size()), global_newton);
     } else {
       ++result.local_rounds;

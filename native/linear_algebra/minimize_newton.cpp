@@ -21,13 +21,6 @@ namespace {
 constexpr double kFirstShift = 1e-9;
 constexpr double kShiftGrowth = 100.0;
 constexpr int kShiftTries = 6;
-// A system ordered by the caller's keys (order_next_by) whose factor would
-// have more nonzeros than the last system's by this factor is ordered
-// afresh: keys that put many joined unknowns at the end of the order fill
-// the factor, and an untangling's memory and time go with its factor. The
-// untanglings' kept orders stay well within it (bunny00 refined 16 times:
-// each within 1% of the nonzeros of the system it follows).
-constexpr double kKeptOrderGrowth = 1.05;
 
 }  // namespace
 
@@ -46,30 +39,15 @@ struct NewtonMinimizer::System {
   std::vector<int> diagonal;           // per free unknown: index of its diagonal entry
   SparseCholesky factor;
   bool analyzed = false;
-  double entries = 0.0;  // the factor's nonzeros
 
-  // `keys`: NewtonMinimizer::order_next_by's, or empty; `most_entries`:
-  // the factor the keys' order may lay out at the most.
-  System(const std::vector<int>& unknowns, int k, int free_count, const std::vector<int>& keys,
-         double most_entries)
+  System(const std::vector<int>& unknowns, int k, int free_count)
       : element_unknowns(unknowns), element_size(k), free(free_count), at(free_count) {
     std::iota(at.begin(), at.end(), 0);
     build();
-    // The elimination order of the pattern in the unknowns' order (the
-    // keys' postordered by the analysis, which gathers its supernodes),
-    // then the pattern again in it.
+    // The elimination order of the pattern in the unknowns' order, then
+    // the pattern again in it.
     SparseCholesky order;
-    bool ordered = false;
-    if (static_cast<int>(keys.size()) == free) {
-      SparseCholesky::Ordering by_keys(free);
-      std::iota(by_keys.indices().data(), by_keys.indices().data() + free, 0);
-      std::stable_sort(by_keys.indices().data(), by_keys.indices().data() + free,
-                       [&keys](int a, int b) { return keys[a] < keys[b]; });
-      order.analyze(matrix, by_keys);
-      ordered = order.factor_entries() <= most_entries;
-    }
-    if (!ordered) order.analyze(matrix, true);
-    entries = order.factor_entries();
+    order.analyze(matrix, true);
     const Eigen::VectorXi& eliminated = order.ordering().indices();
     for (int place = 0; place < free; ++place) at[eliminated[place]] = place;
     build();
@@ -153,10 +131,6 @@ struct NewtonMinimizer::System {
 NewtonMinimizer::NewtonMinimizer() = default;
 NewtonMinimizer::~NewtonMinimizer() = default;
 
-std::vector<int> NewtonMinimizer::places() const { return system_ ? system_->at : std::vector<int>(); }
-
-void NewtonMinimizer::order_next_by(std::vector<int> keys) { next_keys_ = std::move(keys); }
-
 NewtonResult NewtonMinimizer::minimize(const ElementObjective& objective, const std::vector<int>& element_unknowns,
                                        int element_size, int free, Eigen::VectorXd& x, int max_iterations,
                                        double gradient_tolerance, double relative_tolerance,
@@ -165,10 +139,8 @@ NewtonResult NewtonMinimizer::minimize(const ElementObjective& objective, const 
   if (!system_ || !system_->same(element_unknowns, element_size, free)) {
     // The old system (its factor the largest thing in memory at scale) goes
     // before the new one is built, not after.
-    const double most_entries = system_ ? kKeptOrderGrowth * system_->entries : 0.0;
     system_.reset();
-    system_ = std::make_unique<System>(element_unknowns, element_size, free, next_keys_, most_entries);
-    next_keys_.clear();
+    system_ = std::make_unique<System>(element_unknowns, element_size, free);
   }
   System& s = *system_;
   Eigen::VectorXd gradient(x.size());

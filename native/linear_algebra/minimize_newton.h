@@ -58,23 +58,9 @@ class NewtonMinimizer {
                         int free, Eigen::VectorXd& x, int max_iterations, double gradient_tolerance = 1e-10,
                         double relative_tolerance = 1e-10, const std::function<bool()>& stop = {});
 
-  // Per free unknown of the last system, the place at which its
-  // factorisation eliminates it (empty before the first minimize()).
-  std::vector<int> places() const;
-  // The next system that is not the last one is ordered by `keys` (one per
-  // free unknown, the lowest eliminated first, ties in the unknowns' order)
-  // instead of by a fill-reducing ordering of its own, when their sizes
-  // agree and its factor is not much larger than the last system's
-  // (minimize_newton.cpp). For a system that is the last one with some of its unknowns
-  // joined: each joined unknown keyed by the latest place of those it
-  // joins keeps the last ordering's fill, where ordering it afresh costs
-  // as much as several factorisations (docs/design.md section 2.6, stage 7).
-  void order_next_by(std::vector<int> keys);
-
  private:
   struct System;
   std::unique_ptr<System> system_;
-  std::vector<int> next_keys_;
 };
 
 }  // namespace polycube

@@ -42,13 +42,6 @@ class Simplicial : public Eigen::SimplicialLDLT<Matrix, Eigen::Lower, Eigen::AMD
     analyzePattern_preordered(ap, true);
   }
 
-  // The nonzeros of L the analysis laid out (its unit diagonal too, as CHOLMOD counts).
-  double factor_entries() const {
-    double entries = static_cast<double>(m_nonZerosPerCol.size());
-    for (Eigen::Index k = 0; k < m_nonZerosPerCol.size(); ++k) entries += m_nonZerosPerCol[k];
-    return entries;
-  }
-
   // Eigen's solve (SimplicialCholeskyBase::_solve_impl and the sparse
   // triangular solves it calls, SparseCore/TriangularSolver.h) of every
   // column of `b` in one pass over the factor instead of one pass per
@@ -152,11 +145,6 @@ void SparseCholesky::analyze_with(const Eigen::SparseMatrix<double>& matrix, con
     backends_->simplicial->analyze_amd(matrix);
     ordering_ = backends_->simplicial->permutationPinv();
   }
-}
-
-double SparseCholesky::factor_entries() const {
-  if (backends_->supernodal) return backends_->supernodal->factor_entries();
-  return backends_->simplicial ? backends_->simplicial->factor_entries() : 0.0;
 }
 
 std::unique_ptr<SparseCholesky> SparseCholesky::copy_analysis() const {

@@ -41,9 +41,6 @@ class SparseCholesky {
   // backend chose it.
   using Ordering = Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int>;
   const Ordering& ordering() const { return ordering_; }
-  // The nonzeros of the factor the last analysis laid out: what an
-  // ordering costs in memory, and about what it costs a factorisation.
-  double factor_entries() const;
   // The analysis with `ordering`, from an earlier analysis of the same
   // pattern or made for this one (any permutation gives the right factor;
   // a good one a sparse factor), skipping the ordering's cost: at scale the

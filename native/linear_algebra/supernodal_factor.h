@@ -33,8 +33,6 @@ class SupernodalFactor {
   // The ordering the last analysis used, in the same convention (empty
   // before one).
   virtual Eigen::VectorXi ordering() const = 0;
-  // The nonzeros of the factor the last analysis laid out (0 before one).
-  virtual double factor_entries() const = 0;
   // A new factor holding a copy of this analysis, before any factorize()
   // (null after one, or without an analysis): its factorisation is this
   // one's would-be factor bit for bit, without analysing again.

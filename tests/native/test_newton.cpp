@@ -10,9 +10,7 @@
 #include <cstring>
 #include <fstream>
 #include <functional>
-#include <numeric>
 #include <optional>
-#include <random>
 #include <set>
 
 #include "deform/barrier_energy.h"
@@ -293,102 +291,6 @@ TEST(MinimizeNewton, HessiansInBlocksGiveTheSameStepsBitForBit) {
     EXPECT_TRUE(results[k] == results[0]) << "blocks of another size moved the result by "
                                           << (results[k] - results[0]).lpNorm<Eigen::Infinity>();
   }
-}
-
-// Springs (x_a - x_b - rest)^2, an element per pair of `elements` with its
-// rest in `rests` (both read when called: elements added later count).
-ElementObjective springs_at_rest(const std::vector<int>& elements, const std::vector<double>& rests) {
-  return [&elements, &rests](const Eigen::VectorXd& x, Eigen::VectorXd* g, const HessianSink* h) {
-    double f = 0.0;
-    if (g) g->setZero(x.size());
-    for (size_t e = 0; e < rests.size(); ++e) {
-      const int a = elements[2 * e], b = elements[2 * e + 1];
-      const double r = x[a] - x[b] - rests[e];
-      f += r * r;
-      if (g) (*g)[a] += 2.0 * r, (*g)[b] -= 2.0 * r;
-      const double block[4] = {2.0, -2.0, -2.0, 2.0};
-      if (h) (*h)(e, 1, block);
-    }
-    return f;
-  };
-}
-
-// The next system ordered by the caller's keys (the untangling's after
-// triangles are put on a line: its last ordering, kept) instead of its own
-// fill-reducing ordering: eliminated in the keys' order, to the same
-// minimum. A chain of springs, its last unknown held, then the same chain
-// with a spring more to the held unknown (another system, the same pattern),
-// keyed in reverse: on a chain (each unknown also tied to the held one) that order makes no fill and is its own
-// postorder, so the places are the keys'. Also past SparseCholesky's
-// threshold (CHOLMOD, which postorders a given ordering).
-TEST(MinimizeNewton, OrdersTheNextSystemByTheCallersKeys) {
-  for (const int n : {50, 60'000}) {
-    std::vector<int> elements;
-    std::vector<double> rests;
-    for (int i = 0; i + 1 < n; ++i) elements.insert(elements.end(), {i, i + 1}), rests.push_back(1.0);
-    // Each unknown also tied to the held one: well conditioned at every size.
-    for (int i = 0; i + 2 < n; ++i) elements.insert(elements.end(), {i, n - 1}), rests.push_back(n - 1 - i);
-    const ElementObjective springs = springs_at_rest(elements, rests);
-    NewtonMinimizer newton;
-    Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
-    newton.minimize(springs, elements, 2, n - 1, x, 10, 1e-9, 0.0);
-    std::vector<int> places = newton.places();
-    ASSERT_EQ(static_cast<int>(places.size()), n - 1);
-    std::sort(places.begin(), places.end());
-    for (int i = 0; i < n - 1; ++i) ASSERT_EQ(places[i], i) << "not a permutation";
-
-    elements.insert(elements.end(), {0, n - 1}), rests.push_back(0.5 * n);
-    std::vector<int> keys(n - 1);
-    for (int i = 0; i < n - 1; ++i) keys[i] = n - 2 - i;
-    newton.order_next_by(keys);
-    Eigen::VectorXd keyed = Eigen::VectorXd::Zero(n);
-    const NewtonResult r = newton.minimize(springs, elements, 2, n - 1, keyed, 10, 1e-9, 0.0);
-    EXPECT_TRUE(r.converged) << n;
-    EXPECT_EQ(newton.places(), keys) << n;
-    NewtonMinimizer fresh;
-    Eigen::VectorXd own = Eigen::VectorXd::Zero(n);
-    fresh.minimize(springs, elements, 2, n - 1, own, 10, 1e-9, 0.0);
-    EXPECT_NE(fresh.places(), keys) << n << ": the keys are not what a fresh ordering gives anyway";
-    EXPECT_LT((keyed - own).lpNorm<Eigen::Infinity>(), 1e-8 * n) << n;
-  }
-}
-
-// Keys whose order would fill the factor far more than the last system's
-// are not taken: the system is ordered afresh. A grid of springs (each
-// unknown tied to a held one too); keyed by a shuffle of its unknowns, whose
-// factor is many times AMD's, it keeps an ordering of its own; keyed by the
-// last system's places, it takes them.
-TEST(MinimizeNewton, OrdersAfreshWhereTheKeysWouldFillTheFactor) {
-  const int side = 60, n = side * side + 1, held = n - 1;
-  std::vector<int> elements;
-  for (int i = 0; i < side; ++i)
-    for (int j = 0; j < side; ++j) {
-      const int v = i * side + j;
-      if (j + 1 < side) elements.insert(elements.end(), {v, v + 1});
-      if (i + 1 < side) elements.insert(elements.end(), {v, v + side});
-      elements.insert(elements.end(), {v, held});
-    }
-  std::vector<double> rests(elements.size() / 2, 1.0);
-  const ElementObjective springs = springs_at_rest(elements, rests);
-  NewtonMinimizer newton;
-  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
-  newton.minimize(springs, elements, 2, n - 1, x, 5, 1e-9, 0.0);
-  const std::vector<int> own = newton.places();
-
-  std::vector<int> shuffled(n - 1);
-  std::iota(shuffled.begin(), shuffled.end(), 0);
-  std::mt19937 random(7);
-  std::shuffle(shuffled.begin(), shuffled.end(), random);
-  elements.insert(elements.end(), {0, held}), rests.push_back(1.0);  // another system, the same pattern
-  newton.order_next_by(shuffled);
-  Eigen::VectorXd y = Eigen::VectorXd::Zero(n);
-  EXPECT_TRUE(newton.minimize(springs, elements, 2, n - 1, y, 5, 1e-9, 0.0).converged);
-  EXPECT_NE(newton.places(), shuffled) << "the shuffled keys were taken";
-
-  elements.insert(elements.end(), {1, held}), rests.push_back(1.0);
-  newton.order_next_by(own);
-  newton.minimize(springs, elements, 2, n - 1, y, 5, 1e-9, 0.0);
-  EXPECT_EQ(newton.places(), own) << "keys as good as the last system's were not taken";
 }
 
 // A real untangling: fandisk's flat charts from its nearest-axis labels (the

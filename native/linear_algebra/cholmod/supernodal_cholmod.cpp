@@ -69,15 +69,6 @@ class Llt : public Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> {
     return l;
   }
   cholmod_common& common() const { return const_cast<Llt*>(this)->cholmod(); }
-  // The symbolic factor's column counts, summed: its nonzeros.
-  double factor_entries() const {
-    const cholmod_factor* l = m_cholmodFactor;
-    if (!l || !l->ColCount) return 0.0;
-    const int* counts = static_cast<const int*>(l->ColCount);
-    double entries = 0.0;
-    for (size_t k = 0; k < l->n; ++k) entries += counts[k];
-    return entries;
-  }
   Eigen::VectorXi ordering() const {
     if (!m_cholmodFactor || !m_cholmodFactor->Perm) return {};
     return Eigen::Map<const Eigen::VectorXi>(static_cast<const int*>(m_cholmodFactor->Perm),
@@ -133,8 +124,6 @@ class SupernodalCholmod final : public SupernodalFactor {
   }
 
   Eigen::VectorXi ordering() const override { return llt_.ordering(); }
-
-  double factor_entries() const override { return llt_.factor_entries(); }
 
   std::unique_ptr<SupernodalFactor> copy_analysis() const override {
     auto copy = std::make_unique<SupernodalCholmod>();
