@@ -45,7 +45,6 @@ constexpr double kNewtonSettled = 1e-3;
 // system (minimize_newton.h) at once: 4.7 MB, where the whole mesh's at
 // once took 36 numbers per triangle beside the factor.
 constexpr long kHessianBlock = 1L << 14;
-// From this many triangles on, the rounds are Newton's (automatic, header).
 // Room: a determinant (area over scaled input area) above this. Far below
 // the collapsed threshold (quality.h), far above rounding: triangles that
 // the charts hold on a line through a chain of shared unknowns come out
