@@ -76,7 +76,7 @@ def _run(argv):
             bpy.ops.object.polycube_auto_label(detail=args.detail)
         bpy.ops.object.polycube_deform(
             iterations=args.iterations, tolerance=args.tolerance, variant=args.variant.upper(),
-            rerun_from_result=args.rerun_from_result, keep=args.keep.upper(), keep_every=args.keep_every, animate=args.animate,
+            rerun_from_result=args.rerun_from_result, coarse_triangles=args.coarse_triangles, keep=args.keep.upper(), keep_every=args.keep_every, animate=args.animate,
             start_frame=args.start_frame, subdivide=args.subdivide > 0,
             subdivide_levels=max(args.subdivide, 1), subdivide_scheme=args.scheme.upper())
     except RuntimeError as error:
@@ -177,6 +177,10 @@ def _parse(argv, native_options):
     parser.add_argument("--rerun-from-result", action="store_true",
                         help="robust, 100,000 triangles and more: the further runs that relabel collapsed "
                              "faces start from the result instead of the input (several times faster)")
+    parser.add_argument("--coarse-triangles", type=int, default=native_options.DEFAULT_COARSE_TRIANGLES,
+                        metavar="N",
+                        help="robust: a mesh of at least 4 N triangles whose labels do not flatten without help "
+                             "is deformed through a copy decimated to about N (0: always the mesh itself)")
     parser.add_argument("--keep", choices=("all", "every", "final"), default="all",
                         help="which iterations become shape keys")
     parser.add_argument("--keep-every", type=int, default=5, metavar="K")

@@ -9,6 +9,7 @@ VARIANTS = polycube_native.VARIANTS
 DEFAULT_VARIANT = polycube_native.DEFAULT_VARIANT
 DEFAULT_DETAIL = polycube_native.DEFAULT_DETAIL
 MAX_REFINE_LEVELS = polycube_native.MAX_REFINE_LEVELS
+DEFAULT_COARSE_TRIANGLES = polycube_native.DEFAULT_COARSE_TRIANGLES
 
 _DESCRIPTIONS = {
     "robust": "Fold-free steps: no face turns over; faces that cannot reach their axis are listed",

@@ -77,7 +77,8 @@ class ObjectRun:
         """Positional and keyword arguments for polycube_native.deform."""
         args = (self.mesh.vertices, self.mesh.face_indices, self.mesh.face_sizes, self.labels.values)
         kwargs = dict(iterations=self.settings.iterations, tolerance=self.settings.tolerance,
-                      variant=self.settings.variant.lower(), rerun_from_result=self.settings.rerun_from_result)
+                      variant=self.settings.variant.lower(), rerun_from_result=self.settings.rerun_from_result,
+                      coarse_triangles=self.settings.coarse_triangles)
         return args, kwargs
 
     def add_iteration(self, iteration, positions, figures, moved=None):

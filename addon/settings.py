@@ -10,7 +10,7 @@ from collections import namedtuple
 import bpy
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty
 
-from .native_options import DEFAULT_DETAIL, DEFAULT_VARIANT, MAX_REFINE_LEVELS, variant_items
+from .native_options import DEFAULT_COARSE_TRIANGLES, DEFAULT_DETAIL, DEFAULT_VARIANT, MAX_REFINE_LEVELS, variant_items
 
 
 def _setting_names(cls):
@@ -63,6 +63,13 @@ class DeformSettings(LabelSettings):
                     "from the result instead of the input, untangled only around those faces. Several times "
                     "faster on large meshes; a somewhat different polycube",
         default=False)
+    coarse_triangles: IntProperty(
+        name="Coarse Triangles",
+        description="Robust solver: a mesh of at least four times this many triangles whose labels do not "
+                    "flatten without help is decimated to about this many, its charts kept, deformed there "
+                    "and carried back: minutes become seconds at a million triangles (0: always deform the "
+                    "mesh itself)",
+        default=DEFAULT_COARSE_TRIANGLES, min=0, soft_max=200000, step=1000)
     keep: EnumProperty(
         name="Keep", description="Which iterations become shape keys",
         items=(
@@ -111,6 +118,7 @@ class DeformSettings(LabelSettings):
         column.prop(self, "variant")
         if self.variant == 'ROBUST':
             column.prop(self, "rerun_from_result")
+            column.prop(self, "coarse_triangles")
         column.prop(self, "keep")
         if self.keep == 'EVERY':
             column.prop(self, "keep_every")

@@ -71,6 +71,11 @@ int deform_command(const std::vector<std::string>& args) {
                "robust, from 100,000 triangles on: those further runs start from the result instead of the\n"
                "input, untangled only around the relabelled faces: several times faster, about as much\n"
                "collapsed, edge and area errors up to a sixth higher");
+  app.add_option("--coarse-triangles", options.coarse_triangles,
+                 "robust: a mesh of at least 4 times this many triangles is decimated to about this many\n"
+                 "(its charts kept), deformed there and carried back; 0 deforms it at its own resolution")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   bool first_run_only = false;
   app.add_flag("--no-last-resort", first_run_only,
                "robust: return the best state of a run that does not become an exact polycube; by default\n"

@@ -69,7 +69,7 @@ DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>&
 
 DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>& labels, const DeformOptions& options,
                                 const IterationCallback& callback, std::unique_ptr<FinishedRun>& finished,
-                                const Vertices& near) {
+                                const Vertices& near, UntangleStart near_start, bool hand_over_unflat) {
   check_run(mesh, labels, options);
   auto run = std::make_unique<FinishedRun>();
   run->options = options;
@@ -77,6 +77,8 @@ DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>&
   run->callback = callback;
   run->deformation = std::make_unique<Deformation>(mesh, run->labels, run->options, run->callback);
   run->deformation->near = near;
+  run->deformation->near_start = near_start;
+  run->deformation->hand_over_unflat = hand_over_unflat;
   DeformResult result = iterate(*run->deformation, run->planes);
   run->callback = nullptr;
   finished = std::move(run);

@@ -105,6 +105,11 @@ struct DeformOptions {
   // inside its flat charts (polish_stage.h, docs/design.md section 2.6,
   // stage 10), as one more iteration when the limit leaves room for it.
   bool polish = true;
+  // Robust variant: a mesh of at least kCoarseFromRatio times this many
+  // triangles is decimated to about this many, its charts kept, deformed
+  // there and carried back (coarse_to_fine.h, docs/design.md section 2.8);
+  // 0 deforms every mesh at its own resolution.
+  int coarse_triangles = 50'000;
   // Polled after every iteration, of the first run (as its callback is) and
   // of those further runs, which the callback does not see, and inside the
   // stages whose steps take minutes at a million triangles (every round and
@@ -183,6 +188,16 @@ struct DeformResult {
   // Steps of the polish (DeformOptions::polish) kept; when more than 0 it
   // counts as one iteration in `iterations`, the last.
   int polish_steps = 0;
+  // The triangles of the coarse mesh the result was deformed through
+  // (DeformOptions::coarse_triangles; 0: deformed at its own resolution),
+  // and the iterations before the run that gave the result (the mesh's own
+  // run up to its hand-over and the coarse run's, or those of a route not
+  // taken), counted in `iterations`: that run's follow them, with the
+  // iteration limit to themselves.
+  int coarse_triangles = 0, coarse_iterations = 0;
+  // The run stopped at its first flattening attempt to hand the mesh to the
+  // coarse route (Deformation::hand_over_unflat); not in a result returned.
+  bool handed_over = false;
   // Every attempt at flattening, kept or refused: why a run did not become
   // exact (too much area collapsed, or folds left after every round).
   struct FlattenAttempt {
@@ -212,6 +227,10 @@ struct DeformResult {
   // three); 0 otherwise.
   double reference_factorize_seconds = 0.0, reference_solve_seconds = 0.0, reference_measure_seconds = 0.0;
 };
+
+// Adds `from`'s cost (its seconds, stages, factorisations and
+// back-substitutions) to `into`: a run made for another counts in its time.
+void add_cost(DeformResult& into, const DeformResult& from);
 
 // Called after each iteration with its number (from 1), the positions and their
 // figures; returning false stops the run, keeping what is done.

@@ -8,6 +8,7 @@
 #include <memory>
 #include <utility>
 
+#include "deform/coarse_to_fine.h"
 #include "deform/deform.h"
 #include "deform/deformation.h"
 #include "deform/finished_run.h"
@@ -112,33 +113,9 @@ struct RerunMesh {
   std::vector<std::vector<int>> neighbours;
   std::vector<std::vector<int>> edges_of_face;
   LabelEnergy energy;  // the labeller's, for the re-cut and the repair
+  // How the further runs from the result untangle (untangle_flat_charts.h).
+  UntangleStart near_start = UntangleStart::local_then_global;
 };
-
-// What `from` cost, added to `into`: a silent run's time, solves and
-// stages count whether it is kept or not (the report's stages then still
-// add up to its total, and bench's floor counts every back-substitution).
-void add_cost(DeformResult& into, const DeformResult& from) {
-  PhaseSeconds& t = into.seconds;
-  const PhaseSeconds& u = from.seconds;
-  t.total += u.total, t.assemble += u.assemble, t.factorize += u.factorize, t.rotations += u.rotations;
-  t.solve += u.solve, t.measure += u.measure;
-  into.factorizations += from.factorizations;
-  into.back_substitutions += from.back_substitutions;
-  StageSeconds& a = into.stages;
-  const StageSeconds& b = from.stages;
-  for (auto [x, y] : {std::pair{&a.set_up, &b.set_up},
-                      {&a.fit, &b.fit},
-                      {&a.continuous, &b.continuous},
-                      {&a.relax, &b.relax},
-                      {&a.flatten, &b.flatten},
-                      {&a.untangle, &b.untangle},
-                      {&a.measure, &b.measure},
-                      {&a.polish, &b.polish}}) {
-    x->count += y->count;
-    x->seconds += y->seconds;
-  }
-  a.current_steps += b.current_steps;
-}
 
 // A run the caller does not see (its iterations start again from the
 // input, and a caller that keeps every iteration, as shape keys, would get a
@@ -146,8 +123,9 @@ void add_cost(DeformResult& into, const DeformResult& from) {
 // reaches it. Not converged unless it is an exact polycube with nothing
 // turned over and no more edges folded than the input's. What it leaves for a polish goes to `finished`.
 DeformResult silent_run(const PolygonMesh& mesh, const std::vector<int>& labels, const DeformOptions& options,
-                        std::unique_ptr<FinishedRun>& finished, const Vertices& near = Vertices()) {
-  DeformResult run = deform_in_unit_box(mesh, labels, options, IterationCallback{}, finished, near);
+                        std::unique_ptr<FinishedRun>& finished, const Vertices& near = Vertices(),
+                        UntangleStart near_start = UntangleStart::local_then_global) {
+  DeformResult run = deform_in_unit_box(mesh, labels, options, IterationCallback{}, finished, near, near_start);
   run.converged = !run.stopped && run.converged && run.figures.flipped_faces == 0 &&
                   run.figures.folded_edges <= run.input_folded_edges;
   return run;
@@ -209,6 +187,8 @@ void keep_as_next_iteration(const PolygonMesh& mesh, const Triangulation& triang
   if (again.flat_iteration > 0) again.flat_iteration = offset + 1;
   again.unlabelled_faces = result.unlabelled_faces;  // the silent run was given them filled
   again.last_resort = again.last_resort || result.last_resort;
+  again.coarse_triangles = result.coarse_triangles;
+  again.coarse_iterations = result.coarse_iterations;
   std::vector<DeformResult::FlattenAttempt> attempts = result.flatten_attempts;
   for (DeformResult::FlattenAttempt attempt : again.flatten_attempts) {
     attempt.iteration = offset + 1;
@@ -242,7 +222,8 @@ bool keep_if_better(const PolygonMesh& mesh, const RerunMesh& shared, const std:
   // first solve again (fandisk refined 64 times: 30 of each further run's
   // 42 s).
   const bool near = options.rerun_from_result && shared.triangulation.triangles.rows() >= kUntangleNewtonFrom;
-  DeformResult again = silent_run(mesh, moved, options, again_finished, near ? result.positions : Vertices());
+  DeformResult again =
+      silent_run(mesh, moved, options, again_finished, near ? result.positions : Vertices(), shared.near_start);
   const bool worse_errors = (budget.runs_left >= 0 || budget.bounded) &&
                             (again.figures.edge_error > kStalledErrorSlack * result.figures.edge_error ||
                              again.figures.area_error > kStalledErrorSlack * result.figures.area_error ||
@@ -428,6 +409,32 @@ void polish(const PolygonMesh& mesh, const std::vector<int>& labels, const Defor
 
 }  // namespace
 
+// A silent run's time, solves and stages count whether it is kept or not:
+// the report's stages then still add up to its total, and bench's floor
+// counts every back-substitution.
+void add_cost(DeformResult& into, const DeformResult& from) {
+  PhaseSeconds& t = into.seconds;
+  const PhaseSeconds& u = from.seconds;
+  t.total += u.total, t.assemble += u.assemble, t.factorize += u.factorize, t.rotations += u.rotations;
+  t.solve += u.solve, t.measure += u.measure;
+  into.factorizations += from.factorizations;
+  into.back_substitutions += from.back_substitutions;
+  StageSeconds& a = into.stages;
+  const StageSeconds& b = from.stages;
+  for (auto [x, y] : {std::pair{&a.set_up, &b.set_up},
+                      {&a.fit, &b.fit},
+                      {&a.continuous, &b.continuous},
+                      {&a.relax, &b.relax},
+                      {&a.flatten, &b.flatten},
+                      {&a.untangle, &b.untangle},
+                      {&a.measure, &b.measure},
+                      {&a.polish, &b.polish}}) {
+    x->count += y->count;
+    x->seconds += y->seconds;
+  }
+  a.current_steps += b.current_steps;
+}
+
 DeformResult deform(const PolygonMesh& input, const std::vector<int>& labels, const DeformOptions& options,
                     const IterationCallback& callback) {
   check_input(input, &labels);
@@ -442,10 +449,45 @@ DeformResult deform(const PolygonMesh& input, const std::vector<int>& labels, co
   if (options.start.size() > 0) unit_options.start = unit.box().to_unit(options.start);
   // What the run that gave `result` leaves for its polish, while at hand.
   std::unique_ptr<FinishedRun> finished;
-  DeformResult result = deform_in_unit_box(mesh, labels, unit_options, unit_callback, finished);
+  long triangles = 0;
+  for (int f = 0; f < mesh.faces.count(); ++f) triangles += std::max(mesh.faces.size(f) - 2, 0);
+  const bool route = coarse_route_applies(unit_options, triangles);
+  DeformResult result = deform_in_unit_box(mesh, labels, unit_options, unit_callback, finished, Vertices(),
+                                           UntangleStart::local_then_global, route);
+  bool coarse = false;
+  if (result.handed_over) {
+    const DeformResult handed_over = std::move(result);
+    finished.reset();
+    std::vector<int> fine_labels;
+    coarse = coarse_to_fine(mesh, labels, unit_options, unit_callback, handed_over, result, fine_labels, finished);
+    if (coarse) {
+      result.given_labels_figures =
+          result.relabelled_faces.empty()
+              ? result.figures
+              : given_labels_figures(mesh, triangulate(mesh.vertices, mesh.faces), labels, result.positions);
+    } else {
+      // The route not taken: the mesh deformed itself after all, what the
+      // route spent (the handed-over run included) counted in.
+      // Its iterations follow those the callback saw already.
+      const DeformResult spent = std::move(result);
+      const int offset = spent.iterations;
+      IterationCallback after;
+      if (unit_callback)
+        after = [&unit_callback, offset](int iteration, const Vertices& positions, const Figures& figures) {
+          return unit_callback(offset + iteration, positions, figures);
+        };
+      result = deform_in_unit_box(mesh, labels, unit_options, after, finished);
+      add_cost(result, spent);
+      result.iterations += offset;
+      result.kept_iteration += offset;
+      result.coarse_iterations = offset;
+      if (result.flat_iteration > 0) result.flat_iteration += offset;
+    }
+  }
   const bool robust = options.variant == Variant::kRobust;
   std::unique_ptr<RerunMesh> shared;
-  if (robust && options.last_resort && !result.converged && !result.stopped &&
+  // The coarse run made its own last resort and further runs.
+  if (robust && !coarse && options.last_resort && !result.converged && !result.stopped &&
       unit_options.max_collapsed_share < kLastResortCollapsedShare && refused_for_collapse(result, unit_options) &&
       !(options.stop_requested && options.stop_requested())) {
     DeformOptions last_resort = unit_options;
@@ -463,8 +505,17 @@ DeformResult deform(const PolygonMesh& input, const std::vector<int>& labels, co
       add_cost(result, again);
     }
   }
+  // After the coarse route (coarse_to_fine.h) the further runs start from
+  // the result and untangle around the faces they relabel alone, as the
+  // route's own fine run does: from the input each would be the whole run
+  // the route saved.
+  if (coarse) {
+    unit_options.rerun_from_result = true;
+    unit_options.coarse_triangles = 0;
+  }
   if (robust && options.relabel_collapsed && result.converged && result.figures.collapsed_faces > 0) {
     if (!shared) shared = std::make_unique<RerunMesh>(mesh);
+    if (coarse) shared->near_start = UntangleStart::local_only;
     const double triangles = static_cast<double>(shared->triangulation.triangles.rows());
     RerunBudget budget;
     bool crawled = false;
@@ -482,7 +533,8 @@ DeformResult deform(const PolygonMesh& input, const std::vector<int>& labels, co
   }
   // The polish is one more iteration: within the limit, like the others.
   if (robust && options.polish && result.converged && !result.stopped && result.figures.flipped_faces == 0 &&
-      result.iterations < options.iterations && !(options.stop_requested && options.stop_requested()))
+      result.iterations - result.coarse_iterations < options.iterations &&
+      !(options.stop_requested && options.stop_requested()))
     polish(mesh, labels, unit_options, unit_callback, result, std::move(finished));
   result.positions = unit.box().from_unit(result.positions, mesh.vertices, input.vertices);
   // The report never contradicts itself: a run that leaves faces above the

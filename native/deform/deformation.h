@@ -18,6 +18,7 @@
 
 #include "deform/deform.h"
 #include "deform/quality.h"
+#include "deform/untangle_flat_charts.h"
 #include "linear_algebra/cotangent_weights.h"
 #include "linear_algebra/laplacian.h"
 #include "linear_algebra/sparse_cholesky.h"
@@ -117,6 +118,15 @@ struct Deformation {
   // flatten from before fitting (flatten_near, flatten_stage.h); empty: none,
   // or read already (freed once the run's first iteration has tried it).
   Vertices near;
+  // How flatten_near's untangling starts (untangle_flat_charts.h): stage 8's
+  // further runs finish with a global round, a coarse polycube carried back
+  // (coarse_to_fine.h) does not.
+  UntangleStart near_start = UntangleStart::local_then_global;
+  // Stop at the first flattening attempt that the flat solve alone does not
+  // make exact (DeformResult::handed_over): labels that do not flatten
+  // without help, at a scale where the coarse route (coarse_to_fine.h)
+  // costs a fraction of untangling them here.
+  bool hand_over_unflat = false;
 
   // An iteration's time goes to its stage (StageSeconds), less its
   // measurement and the flattening and untangling it did, which are stages

@@ -46,6 +46,12 @@ void flatten_stage(RobustRun& run, int iteration) {
       {iteration, flat.rounds, flat.states.flipped_count, flat.collapsed_area, flat.found});
   DeformResult::FlattenAttempt& attempt = result.flatten_attempts.back();
   attempt.factorizations = flat.planes->factorizations();
+  if (!flat.found && d.hand_over_unflat) {
+    result.handed_over = true;
+    run.chart_factors.reset();
+    attempt.seconds = clock.lap();
+    return;
+  }
   if (!flat.found && flat.first_positions.size() > 0) {
     CollapseBound bound;
     bound.area = d.options.max_collapsed_share;  // refused above, below
@@ -91,7 +97,7 @@ bool flatten_near(RobustRun& run, const Vertices& near, int iteration) {
   const Vertices flat = snap_to_charts(near, *planes);
   CollapseBound bound;
   bound.area = d.options.max_collapsed_share;
-  UntangleStep opened = untangle_step(run, flat, *planes, bound, true);
+  UntangleStep opened = untangle_step(run, flat, *planes, bound, d.near_start);
   const double untangle_seconds = d.phase.lap();
   result.seconds.solve += untangle_seconds;
   const double collapsed = opened.fold_free ? d.quality.collapsed_area_fraction(opened.states) : 1.0;

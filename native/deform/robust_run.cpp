@@ -168,7 +168,7 @@ std::unique_ptr<ChartPlanes> robust_iteration(Deformation& d) {
       // at iteration 9, then no stall until iteration 100).
       flatten_stage(run, iteration);
     }
-    if (!d.finish_iteration(iteration, &run.state)) break;
+    if (result.handed_over || !d.finish_iteration(iteration, &run.state)) break;
   }
   return std::move(run.planes);
 }

@@ -183,7 +183,8 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
                                      const std::vector<int>& triangle_labels, int max_rounds, double local_share,
                                      const CollapseBound& bound, UntangleMinimiser minimiser,
                                      const std::function<bool()>& stop,
-                                     const std::function<void()>& before_global, bool local_only) {
+                                     const std::function<void()>& before_global, UntangleStart start) {
+  const bool local_only = start != UntangleStart::as_needed;
   const int n = static_cast<int>(input.rows());
   const Eigen::Index count = triangles.rows();
   UntangledCharts result;
@@ -522,13 +523,13 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
     if (only_local || few(no_room.size())) seed_with(no_room);
     previous = reached;
     result.untangled = no_room.empty();
-    // `local_only`: one global round to finish, as the map may have moved
-    // far from the caller's around the triangles opened (a polycube of other
-    // labels). Fandisk refined 64 times, stage 8's further runs: edge and area
-    // error 0.1055 / 0.1478 without it, 0.1049 / 0.1421 with it.
+    // `local_then_global`: one global round to finish, as the map may have
+    // moved far from the caller's around the triangles opened (a polycube of
+    // other labels). Fandisk refined 64 times, stage 8's further runs: edge
+    // and area error 0.1055 / 0.1478 without it, 0.1049 / 0.1421 with it.
     if (finishing && !local) break;
     if (no_room.empty() && only_local) {
-      if (!local_only) break;
+      if (start != UntangleStart::local_then_global) break;
       only_local = false;
       finishing = true;
     }

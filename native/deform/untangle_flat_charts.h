@@ -77,6 +77,20 @@ struct CollapseBound {
 // for bit.
 enum class UntangleMinimiser { automatic, newton, lbfgs };
 
+// Where Newton's rounds start (at scale; below it every round is L-BFGS's
+// and `as_needed`): global until few triangles lack room (`as_needed`); or
+// local from the start, turned-over triangles included, as for a map that
+// turns nothing over (above), for a map that is an untangled polycube but
+// for a few faces: then one global round to finish once every triangle has
+// room (`local_then_global`: stage 8's further runs from the result, whose
+// map may have moved far around the faces relabelled), or none
+// (`local_only`: a coarse polycube carried back, coarse_to_fine.h, whose map
+// away from the triangles opened is the coarse run's minimum already; the
+// global round, at a million triangles, was most of B0 refined 64 times'
+// untangling, 22 of 25 s). Either local start returns `flat` as it is when
+// every triangle has room from the start.
+enum class UntangleStart { as_needed, local_then_global, local_only };
+
 // From this many triangles on, `automatic` rounds are Newton's (above).
 constexpr long kUntangleNewtonFrom = 100'000;
 constexpr int kUntangleRounds = 30;
@@ -92,17 +106,13 @@ constexpr double kUntangleLocalShare = 0.002;
 // factorisation, where a round costs minutes at a million triangles).
 // `before_global`, when given, is called once before the first global round
 // (the caller's factors freed for Newton's, say: local rounds need little).
-// `local_only`: with Newton's rounds, local rounds from the start,
-// turned-over triangles included, as for a map that turns nothing over
-// (above), and once every triangle has room one global round to finish;
-// `flat` is returned as it is when every triangle has room from the start.
-// For a map that is an untangled polycube but for a few faces (stage 8's
-// further runs from the result, docs/design.md section 2.6).
+// `start`: where Newton's rounds start (above).
 UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat, const Triangles& triangles,
                                      const std::vector<int>& triangle_labels, int max_rounds = kUntangleRounds,
                                      double local_share = kUntangleLocalShare, const CollapseBound& bound = {},
                                      UntangleMinimiser minimiser = UntangleMinimiser::automatic,
                                      const std::function<bool()>& stop = {},
-                                     const std::function<void()>& before_global = {}, bool local_only = false);
+                                     const std::function<void()>& before_global = {},
+                                     UntangleStart start = UntangleStart::as_needed);
 
 }  // namespace polycube

@@ -7,7 +7,7 @@
 namespace polycube {
 
 UntangleStep untangle_step(RobustRun& run, const Vertices& flat, ChartPlanes& factored, const CollapseBound& bound,
-                           bool local_only) {
+                           UntangleStart start) {
   Deformation& d = run.d;
   const StageTimer timer(d.result.stages.untangle, d.set_apart);
   UntangleStep opened;
@@ -22,7 +22,7 @@ UntangleStep untangle_step(RobustRun& run, const Vertices& flat, ChartPlanes& fa
   const UntangledCharts untangled =
       untangle_flat_charts(d.mesh.vertices, flat, d.triangles(), d.triangle_labels, kUntangleRounds,
                            kUntangleLocalShare, bound, UntangleMinimiser::automatic, d.options.stop_requested, release,
-                           local_only);
+                           start);
   opened.rounds = untangled.rounds;
   if (untangled.refused) return opened;
   opened.positions = d.place(untangled.positions);

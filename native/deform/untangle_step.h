@@ -31,9 +31,9 @@ struct UntangleStep {
   int rounds = 0;  // of untangle_flat_charts
 };
 
-// Its time is a stage of its own (StageSeconds::untangle). `local_only`:
+// Its time is a stage of its own (StageSeconds::untangle). `start`:
 // untangle_flat_charts's.
 UntangleStep untangle_step(RobustRun& run, const Vertices& flat, ChartPlanes& factored, const CollapseBound& bound,
-                           bool local_only = false);
+                           UntangleStart start = UntangleStart::as_needed);
 
 }  // namespace polycube

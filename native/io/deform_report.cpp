@@ -45,6 +45,8 @@ Json deform_report(const PolygonMesh& mesh, const DeformResult& r, const DeformO
                {"second_run_iterations", r.second_run_iterations},
                {"last_resort", r.last_resort},
                {"polish_steps", r.polish_steps},
+               {"coarse_triangles", r.coarse_triangles},
+               {"coarse_iterations", r.coarse_iterations},
                {"collapsed_on_purpose", r.collapsed_on_purpose},
                {"unlabelled_faces", r.unlabelled_faces},
                {"solver", r.solver},

@@ -140,7 +140,7 @@ py::dict figures_dict(const Figures& figures) {
 py::dict deform_py(const DoubleArray& vertices, const IntArray& face_indices, const IntArray& face_sizes,
                    const IntArray& labels, int iterations, double tolerance, const std::string& variant,
                    bool relabel_collapsed, bool rerun_from_result, bool last_resort, bool polish,
-                   const std::optional<py::function>& callback, const std::optional<py::function>& stop) {
+                   int coarse_triangles, const std::optional<py::function>& callback, const std::optional<py::function>& stop) {
   PolygonMesh mesh = to_mesh(vertices, face_indices, face_sizes);
   const std::vector<int> face_labels = to_labels(labels);
   DeformOptions options;
@@ -151,6 +151,8 @@ py::dict deform_py(const DoubleArray& vertices, const IntArray& face_indices, co
   options.rerun_from_result = rerun_from_result;
   options.last_resort = last_resort;
   options.polish = polish;
+  if (coarse_triangles < 0) throw Error("coarse_triangles must be 0 (off) or more");
+  options.coarse_triangles = coarse_triangles;
 
   if (stop)
     options.stop_requested = [&stop]() {
@@ -408,6 +410,7 @@ PYBIND11_MODULE(polycube_native, m) {
   m.attr("DEFAULT_COMPACTNESS") = AutoLabelOptions{}.compactness;
   m.attr("DEFAULT_DETAIL") = 0.5;
   m.attr("MAX_REFINE_LEVELS") = kMaxRefineLevels;
+  m.attr("DEFAULT_COARSE_TRIANGLES") = DeformOptions{}.coarse_triangles;
 
   m.def("deform", &deform_py, py::arg("vertices"), py::arg("face_indices"), py::arg("face_sizes"), py::arg("labels"),
         py::kw_only(), py::arg("iterations") = 100, py::arg("tolerance") = 0.5,
@@ -415,7 +418,7 @@ PYBIND11_MODULE(polycube_native, m) {
         py::arg("relabel_collapsed") = DeformOptions{}.relabel_collapsed,
         py::arg("rerun_from_result") = DeformOptions{}.rerun_from_result,
         py::arg("last_resort") = DeformOptions{}.last_resort, py::arg("polish") = DeformOptions{}.polish,
-        py::arg("callback") = py::none(), py::arg("stop") = py::none(), R"(Deform a mesh towards its polycube.
+        py::arg("coarse_triangles") = DeformOptions{}.coarse_triangles, py::arg("callback") = py::none(), py::arg("stop") = py::none(), R"(Deform a mesh towards its polycube.
 
 vertices (n, 3) float; face_indices: all face corners, flat; face_sizes: corners per face;
 labels: per face, 0..5 = +X, -X, +Y, -Y, +Z, -Z, -1 = nearest axis.
@@ -437,6 +440,10 @@ polish (robust): an exact result's edge and area errors are lowered last, its ch
 nothing turned over or newly collapsed (docs/design.md section 2.6, "Polish"; the report's
 polish_steps counts the steps kept, and the callback sees the result once more, as the last
 iteration); False returns the result as the run left it.
+coarse_triangles (robust): a mesh of at least four times this many triangles is decimated to about
+this many, its charts kept, deformed there and carried back, the fine run only finishing it
+(docs/design.md section 2.8; the report's coarse_triangles and coarse_iterations say so); 0 deforms
+every mesh at its own resolution.
 Returns {"positions", "labels", "report"}; the report's face lists (unconverged_faces,
 flipped_face_ids, relabelled_faces) hold every id, as int32 arrays. Raises ValueError on bad input.)");
   m.def("nearest_labels", &nearest_labels_py, py::arg("vertices"), py::arg("face_indices"), py::arg("face_sizes"),

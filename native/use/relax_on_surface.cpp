@@ -7,42 +7,10 @@
 #include <map>
 #include <array>
 
+#include "mesh/nearest_point_weights.h"
 
 namespace polycube {
 namespace {
-
-// The nearest point of triangle abc to p, as barycentric weights (Ericson,
-// Real-Time Collision Detection 5.1.5: by the Voronoi region p falls in).
-Eigen::Vector3d nearest_weights(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                const Eigen::Vector3d& c) {
-  const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0.0 && d2 <= 0.0) return {1.0, 0.0, 0.0};
-  const Eigen::Vector3d bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0.0 && d4 <= d3) return {0.0, 1.0, 0.0};
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) {
-    const double v = d1 / (d1 - d3);
-    return {1.0 - v, v, 0.0};
-  }
-  const Eigen::Vector3d cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0.0 && d5 <= d6) return {0.0, 0.0, 1.0};
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) {
-    const double w = d2 / (d2 - d6);
-    return {1.0 - w, 0.0, w};
-  }
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) {
-    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-    return {0.0, 1.0 - w, w};
-  }
-  const double sum = va + vb + vc;
-  if (!(sum > 0.0)) return {1.0, 0.0, 0.0};  // a degenerate triangle: its first corner
-  return {va / sum, vb / sum, vc / sum};
-}
 
 // Per triangle, the triangles across each of its edges (the edge opposite corner k).
 using Across = std::vector<std::array<std::vector<int>, 3>>;
@@ -59,7 +27,7 @@ struct Walk {
   double distance(const Eigen::Vector3d& q, int t, Eigen::Vector3d& w) const {
     const Eigen::Vector3d ta = surface.row(triangles(t, 0)), tb = surface.row(triangles(t, 1)),
                           tc = surface.row(triangles(t, 2));
-    w = nearest_weights(q, ta, tb, tc);
+    w = nearest_point_weights(q, ta, tb, tc);
     return (w[0] * ta + w[1] * tb + w[2] * tc - q).norm();
   }
 

@@ -129,22 +129,26 @@ def test_current_variant():
 
 
 def test_quick_further_runs_reach_the_solver():
-    # Off by default; the operator's setting is the module's rerun_from_result.
+    # Off by default; the operator's settings are the module's rerun_from_result
+    # and coarse_triangles (the coarse route, docs/design.md section 2.8).
     sphere = labelled_sphere()
     native = polycube.polycube_native
     original, seen = native.deform, []
 
     def spy(*args, **kwargs):
-        seen.append(kwargs.get("rerun_from_result"))
+        seen.append((kwargs.get("rerun_from_result"), kwargs.get("coarse_triangles")))
         return original(*args, **kwargs)
 
     native.deform = spy
     try:
         assert deform(sphere, iterations=5) == {'FINISHED'}
         assert deform(sphere, iterations=5, rerun_from_result=True) == {'FINISHED'}
+        assert deform(sphere, iterations=5, coarse_triangles=0) == {'FINISHED'}
     finally:
         native.deform = original
-    assert seen == [False, True]
+    default = native.DEFAULT_COARSE_TRIANGLES
+    assert default > 0
+    assert seen == [(False, default), (True, default), (False, 0)]
 
 
 def test_same_settings_same_keys():
@@ -200,7 +204,7 @@ def test_scene_settings_match_the_operator_defaults():
     # The sidebar's copy of the settings starts where the operator does.
     operator = bpy.ops.object.polycube_deform.get_rna_type().properties
     settings = bpy.context.scene.polycube
-    for name in ("iterations", "tolerance", "variant", "rerun_from_result", "keep", "keep_every", "animate",
+    for name in ("iterations", "tolerance", "variant", "rerun_from_result", "coarse_triangles", "keep", "keep_every", "animate",
                  "start_frame",
                  "label_source", "detail", "subdivide", "subdivide_levels", "subdivide_scheme"):
         assert getattr(settings, name) == operator[name].default, name

@@ -251,22 +251,30 @@ TEST(UntangleFlatCharts, ManySliversAtScaleAreOpenedLocallyToo) {
   EXPECT_GT(far, 300);
 }
 
-TEST(UntangleFlatCharts, LocalOnlyOpensTurnedOverTrianglesLocallyThenFinishesWithOneGlobalRound) {
-  // The block with a vertex of its top moved past its neighbour: triangles
-  // turn over, so Newton's rounds would be global from the start. With
-  // `local_only` (stage 8's runs from the result) they are local until
-  // every triangle has room, then one global round finishes.
-  const Block b = block(16, 16, 8);
+// The block with the vertex at the middle of its top moved past its
+// neighbour: the triangles around it turn over.
+Vertices top_vertex_moved_past_its_neighbour(const Block& b) {
   Vertices crushed = b.vertices;
   for (Eigen::Index v = 0; v < crushed.rows(); ++v)
     if (crushed(v, 0) == 8.0 && crushed(v, 1) == 8.0 && crushed(v, 2) == 8.0) crushed(v, 0) = 9.5;
+  return crushed;
+}
+
+TEST(UntangleFlatCharts, LocalThenGlobalOpensTurnedOverTrianglesLocallyThenFinishesWithOneGlobalRound) {
+  // The block with a vertex of its top moved past its neighbour: triangles
+  // turn over, so Newton's rounds would be global from the start. With
+  // `local_then_global` (stage 8's runs from the result) they are local
+  // until every triangle has room, then one global round finishes.
+  const Block b = block(16, 16, 8);
+  const Vertices crushed = top_vertex_moved_past_its_neighbour(b);
   const QualityMeasure quality(b.vertices, b.triangles, b.labels);
   ASSERT_GT(quality.measure(crushed).flipped_faces, 0);
   ASSERT_TRUE(flat(crushed, b));
   int before_global = 0;
   const UntangledCharts u =
       untangle_flat_charts(b.vertices, crushed, b.triangles, b.labels, kUntangleRounds, kUntangleLocalShare, {},
-                           UntangleMinimiser::newton, {}, [&] { ++before_global; }, true);
+                           UntangleMinimiser::newton, {}, [&] { ++before_global; },
+                           UntangleStart::local_then_global);
   EXPECT_TRUE(u.untangled);
   EXPECT_GT(u.local_rounds, 0);
   EXPECT_EQ(u.rounds, u.local_rounds + 1);
@@ -277,10 +285,40 @@ TEST(UntangleFlatCharts, LocalOnlyOpensTurnedOverTrianglesLocallyThenFinishesWit
   EXPECT_EQ(after.collapsed_faces, 0);
   // A map whose every triangle has room is returned as it is.
   const UntangledCharts same = untangle_flat_charts(b.vertices, b.vertices, b.triangles, b.labels, kUntangleRounds,
-                                                    kUntangleLocalShare, {}, UntangleMinimiser::newton, {}, {}, true);
+                                                    kUntangleLocalShare, {}, UntangleMinimiser::newton, {}, {},
+                                                    UntangleStart::local_then_global);
   EXPECT_TRUE(same.untangled);
   EXPECT_EQ(same.rounds, 0);
   EXPECT_EQ(same.positions, b.vertices);
+}
+
+TEST(UntangleFlatCharts, LocalOnlyOpensTurnedOverTrianglesWithoutAGlobalRound) {
+  // The same crushed block: with `local_only` (a coarse polycube carried
+  // back) the local rounds open it and nothing else moves, no global round
+  // (and no factor of the whole mesh) after them.
+  const Block b = block(16, 16, 8);
+  const Vertices crushed = top_vertex_moved_past_its_neighbour(b);
+  const QualityMeasure quality(b.vertices, b.triangles, b.labels);
+  ASSERT_GT(quality.measure(crushed).flipped_faces, 0);
+  int before_global = 0;
+  const UntangledCharts u =
+      untangle_flat_charts(b.vertices, crushed, b.triangles, b.labels, kUntangleRounds, kUntangleLocalShare, {},
+                           UntangleMinimiser::newton, {}, [&] { ++before_global; }, UntangleStart::local_only);
+  EXPECT_TRUE(u.untangled);
+  EXPECT_GT(u.local_rounds, 0);
+  EXPECT_EQ(u.rounds, u.local_rounds);
+  EXPECT_EQ(before_global, 0);
+  EXPECT_TRUE(flat(u.positions, b));
+  const Figures after = quality.measure(u.positions);
+  EXPECT_EQ(after.flipped_faces, 0);
+  EXPECT_EQ(after.collapsed_faces, 0);
+  // Far from the moved vertex the map is the caller's, up to the rounding
+  // of its round trip through the unknowns.
+  double far_moved = 0.0;
+  for (Eigen::Index v = 0; v < crushed.rows(); ++v)
+    if (std::abs(b.vertices(v, 0) - 8.0) + std::abs(b.vertices(v, 1) - 8.0) > 8.0)
+      far_moved = std::max(far_moved, (u.positions.row(v) - crushed.row(v)).norm());
+  EXPECT_LT(far_moved, 1e-12);
 }
 
 TEST(UntangleFlatCharts, StopsOnceTheCollapsesPassTheCallersBound) {

@@ -250,8 +250,8 @@ def test_real_model_both_variants(program, tmp_path):
 
 
 def test_rerun_from_result_at_scale(program, tmp_path):
-    # Fandisk refined 16 times (207,136 triangles), nearest labels: the first
-    # run's flattening is untangled from its linear solve and collapses
+    # Fandisk refined 16 times (207,136 triangles), nearest labels, deformed
+    # at its own resolution (--coarse-triangles 0): the first run's flattening is untangled from its linear solve and collapses
     # faces; with --rerun-from-result stage 8's further runs start from that
     # result (no linear solve: zero rounds) and are kept, exact, each
     # collapsing less (docs/design.md section 2.6, stage 8).
@@ -261,7 +261,7 @@ def test_rerun_from_result_at_scale(program, tmp_path):
     refined = tmp_path / "fandisk-x16.ply"
     result = run(program, "refine", fandisk, "--levels", 2, "--scheme", "bilinear", "--output", refined)
     assert result.returncode == 0, result.stderr
-    result = run(program, "deform", refined, "--iterations", 50, "--rerun-from-result")
+    result = run(program, "deform", refined, "--iterations", 50, "--rerun-from-result", "--coarse-triangles", 0)
     assert result.returncode == 0, result.stderr
     report = json.loads(result.stdout)
     assert report["triangles"] == 207136
@@ -273,3 +273,34 @@ def test_rerun_from_result_at_scale(program, tmp_path):
     assert report["converged"] and report["flipped_faces"] == 0
     assert report["folded_edges"] <= report["input_folded_edges"]
     assert report["collapsed_area"] < 1e-4
+
+
+def test_coarse_route_at_scale(program, tmp_path):
+    # Fandisk refined 16 times, nearest labels: its first flattening needs
+    # untangling, so the mesh goes the coarse route (docs/design.md section
+    # 2.8): decimated to at most 50,000 triangles with its charts kept,
+    # deformed there, carried back and finished at full resolution: exact,
+    # nothing flipped or folded, under 0.01% of the area collapsed. Deformed
+    # at its own resolution it takes about ten times as long (section 2.8
+    # has the figures).
+    fandisk = MESHES / "fandisk.off"
+    if not fandisk.exists():
+        pytest.skip("run `make data`")
+    refined = tmp_path / "fandisk-x16.ply"
+    assert run(program, "refine", fandisk, "--levels", 2, "--output", refined).returncode == 0
+    out = tmp_path / "out.ply"
+    result = run(program, "deform", refined, "--iterations", 50, "--output", out)
+    assert result.returncode == 0, result.stderr
+    report = json.loads(result.stdout)
+    assert report["triangles"] == 207136
+    assert 0 < report["coarse_triangles"] <= 50000
+    assert 0 < report["coarse_iterations"] < report["iterations"]
+    assert report["converged"] and report["normal_deviation_max_deg"] < 0.5
+    assert report["flipped_faces"] == 0 and report["folded_edges"] <= report["input_folded_edges"]
+    assert report["collapsed_area"] < 1e-4
+    # The coarse run relabelled faces; the figures against the given labels say so.
+    assert report["relabelled_faces_count"] > 0
+    assert report["given_labels"]["normal_deviation_max_deg"] > 45
+    # The route is an option: 0 deforms the mesh at its own resolution.
+    assert "--coarse-triangles" in run(program, "deform", "-h").stdout
+    assert run(program, "deform", refined, "--coarse-triangles", -1).returncode != 0

@@ -1,0 +1,56 @@
+// A mesh of a million triangles deformed through a coarse one (docs/design.md
+// section 2.8): decimated with its charts kept (decimate_charts.h), the
+// coarse mesh deformed by every stage of the robust variant (its further runs
+// and last resort included), its polycube carried back to the fine vertices,
+// and the fine mesh's own run started from there (flatten_near,
+// flatten_stage.h), where it only flattens what the carrying left bent,
+// relaxes and polishes.
+//
+// Why: at scale the robust variant's time goes to untangling the slivers its
+// flat charts collapse and to stage 8's further runs, each a whole run
+// (bunny00 refined 16 times, nearest labels: half an hour, 1.2 million
+// triangles). On the coarse mesh these cost what they cost on the model
+// itself, seconds, and the polycube they reach is the same wherever the fine
+// mesh only adds vertices on the same surface.
+//
+// When: the robust variant, from kCoarseFromRatio times
+// DeformOptions::coarse_triangles triangles on, once the mesh's own run has
+// shown at its first flattening attempt that its labels do not flatten
+// without help (Deformation::hand_over_unflat). Labels that do flatten (B0
+// refined 64 times) are deformed as before, bit for bit: there the fine run
+// costs about what the route would, and keeps its exact figures.
+//
+// Input: a mesh in the unit box, its labels per polygon face (-1..5), the
+// run's options and callback (iterations of the coarse run are shown with
+// their positions carried to the fine vertices), and the mesh's own run that
+// handed over (its cost and iterations count in the result). Output: false
+// when the decimation cannot get far enough, or the coarse or the fine run
+// does not end exact; then `result` holds only what was spent, for the
+// caller, who deforms the mesh itself. Else true, `result` the fine run's
+// (its relabelled faces those the coarse run relabelled too), `fine_labels`
+// the labels it ran on (per polygon face), and `finished` what its polish
+// needs.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "deform/deform.h"
+
+namespace polycube {
+
+struct FinishedRun;
+
+// The fine mesh must have at least this many times the coarse triangles: a
+// run on a mesh a quarter the size saves less than the carrying costs in
+// figures (what the fine run must still flatten and untangle).
+constexpr double kCoarseFromRatio = 4.0;
+
+// Whether the route applies to a mesh of this many triangles (above).
+bool coarse_route_applies(const DeformOptions& options, Eigen::Index triangles);
+
+bool coarse_to_fine(const PolygonMesh& mesh, const std::vector<int>& labels, const DeformOptions& options,
+                    const IterationCallback& callback, const DeformResult& handed_over, DeformResult& result,
+                    std::vector<int>& fine_labels, std::unique_ptr<FinishedRun>& finished);
+
+}  // namespace polycube
