@@ -113,7 +113,7 @@ bool coarse_route_applies(const DeformOptions& options, Eigen::Index triangles) 
 
 bool coarse_to_fine(const PolygonMesh& mesh, const std::vector<int>& labels, const DeformOptions& options,
                     const IterationCallback& callback, const DeformResult& handed_over, DeformResult& result,
-                    std::vector<int>& fine_labels, std::unique_ptr<FinishedRun>& finished) {
+                    std::unique_ptr<FinishedRun>& finished) {
   Stopwatch clock;
   const Triangulation triangulation = triangulate(mesh.vertices, mesh.faces);
   const Eigen::Index fine_triangles = triangulation.triangles.rows();
@@ -132,18 +132,6 @@ bool coarse_to_fine(const PolygonMesh& mesh, const std::vector<int>& labels, con
   DeformResult spent_coarse;  // the cost of the runs made: the handed-over one, the coarse one
   add_cost(spent_coarse, handed_over);
   int offset = handed_over.iterations;  // their iterations
-  const auto coarse_run = [&]() {
-    IterationCallback coarse_callback;
-    if (callback)
-      coarse_callback = [&, at = offset](int iteration, const Vertices& positions, const Figures& figures) {
-        return callback(at + iteration, carry_to_fine(decimation, positions), figures);
-      };
-    DeformResult run = deform(coarse_mesh(mesh.vertices, decimation), decimation.labels, coarse_options,
-                              coarse_callback);
-    add_cost(spent_coarse, run);
-    offset += run.iterations;
-    return run;
-  };
   // What a route not taken cost, for the caller's report.
   const auto spent = [&](const DeformResult* fine_run) {
     result = DeformResult();
@@ -155,7 +143,16 @@ bool coarse_to_fine(const PolygonMesh& mesh, const std::vector<int>& labels, con
     return false;
   };
   if (!coarse_enough) return spent(nullptr);
-  DeformResult coarse_result = coarse_run();
+  const IterationCallback numbered = numbered_from(callback, offset);
+  IterationCallback coarse_callback;
+  if (numbered)
+    coarse_callback = [&](int iteration, const Vertices& positions, const Figures& figures) {
+      return numbered(iteration, carry_to_fine(decimation, positions), figures);
+    };
+  const DeformResult coarse_result =
+      deform(coarse_mesh(mesh.vertices, decimation), decimation.labels, coarse_options, coarse_callback);
+  add_cost(spent_coarse, coarse_result);
+  offset += coarse_result.iterations;
   // A coarse result that needed the last resort (its labels flatten only
   // with up to half the area collapsed) collapses more than the mesh's own
   // run: at more triangles the same labels leave the charts more room
@@ -171,14 +168,9 @@ bool coarse_to_fine(const PolygonMesh& mesh, const std::vector<int>& labels, con
   clock.lap();
   const Vertices near = carry_to_fine(decimation, coarse_result.positions);
   own_seconds += clock.lap();
-  IterationCallback fine_callback;
-  if (callback)
-    fine_callback = [callback, offset](int iteration, const Vertices& positions, const Figures& figures) {
-      return callback(offset + iteration, positions, figures);
-    };
   std::unique_ptr<FinishedRun> fine_finished;
-  DeformResult fine_result =
-      deform_in_unit_box(mesh, fine, options, fine_callback, fine_finished, near, UntangleStart::local_only);
+  DeformResult fine_result = deform_in_unit_box(mesh, fine, options, numbered_from(callback, offset), fine_finished,
+                                                near, UntangleStart::local_only);
   // Not exact, or exact only by running from the input as a whole run would:
   // the caller's run does better than this one, whose time is then lost.
   if (!fine_result.converged || fine_result.stopped || fine_result.figures.flipped_faces > 0 ||
@@ -200,7 +192,6 @@ bool coarse_to_fine(const PolygonMesh& mesh, const std::vector<int>& labels, con
   std::sort(relabelled.begin(), relabelled.end());
   relabelled.erase(std::unique(relabelled.begin(), relabelled.end()), relabelled.end());
   result = std::move(fine_result);
-  fine_labels = std::move(fine);
   finished = std::move(fine_finished);
   return true;
 }

@@ -27,9 +27,8 @@
 // when the decimation cannot get far enough, or the coarse or the fine run
 // does not end exact; then `result` holds only what was spent, for the
 // caller, who deforms the mesh itself. Else true, `result` the fine run's
-// (its relabelled faces those the coarse run relabelled too), `fine_labels`
-// the labels it ran on (per polygon face), and `finished` what its polish
-// needs.
+// (its labels those it ran on, its relabelled faces those the coarse run
+// relabelled too), and `finished` what its polish needs.
 #pragma once
 
 #include <memory>
@@ -51,6 +50,6 @@ bool coarse_route_applies(const DeformOptions& options, Eigen::Index triangles);
 
 bool coarse_to_fine(const PolygonMesh& mesh, const std::vector<int>& labels, const DeformOptions& options,
                     const IterationCallback& callback, const DeformResult& handed_over, DeformResult& result,
-                    std::vector<int>& fine_labels, std::unique_ptr<FinishedRun>& finished);
+                    std::unique_ptr<FinishedRun>& finished);
 
 }  // namespace polycube

@@ -236,6 +236,10 @@ void add_cost(DeformResult& into, const DeformResult& from);
 // figures; returning false stops the run, keeping what is done.
 using IterationCallback = std::function<bool(int iteration, const Vertices& positions, const Figures& figures)>;
 
+// `callback` for a run whose iterations follow `offset` already seen: it
+// sees them numbered on from there (empty when `callback` is).
+IterationCallback numbered_from(const IterationCallback& callback, int offset);
+
 // Labels are per polygon face, -1..5. Throws Error on input check_input rejects
 // and when a linear solve fails.
 // Works in the unit box (unit_box.h): the same model at any scale gives the

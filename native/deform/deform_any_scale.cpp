@@ -409,6 +409,13 @@ void polish(const PolygonMesh& mesh, const std::vector<int>& labels, const Defor
 
 }  // namespace
 
+IterationCallback numbered_from(const IterationCallback& callback, int offset) {
+  if (!callback) return {};
+  return [callback, offset](int iteration, const Vertices& positions, const Figures& figures) {
+    return callback(offset + iteration, positions, figures);
+  };
+}
+
 // A silent run's time, solves and stages count whether it is kept or not:
 // the report's stages then still add up to its total, and bench's floor
 // counts every back-substitution.
@@ -458,8 +465,7 @@ DeformResult deform(const PolygonMesh& input, const std::vector<int>& labels, co
   if (result.handed_over) {
     const DeformResult handed_over = std::move(result);
     finished.reset();
-    std::vector<int> fine_labels;
-    coarse = coarse_to_fine(mesh, labels, unit_options, unit_callback, handed_over, result, fine_labels, finished);
+    coarse = coarse_to_fine(mesh, labels, unit_options, unit_callback, handed_over, result, finished);
     if (coarse) {
       result.given_labels_figures =
           result.relabelled_faces.empty()
@@ -471,12 +477,7 @@ DeformResult deform(const PolygonMesh& input, const std::vector<int>& labels, co
       // Its iterations follow those the callback saw already.
       const DeformResult spent = std::move(result);
       const int offset = spent.iterations;
-      IterationCallback after;
-      if (unit_callback)
-        after = [&unit_callback, offset](int iteration, const Vertices& positions, const Figures& figures) {
-          return unit_callback(offset + iteration, positions, figures);
-        };
-      result = deform_in_unit_box(mesh, labels, unit_options, after, finished);
+      result = deform_in_unit_box(mesh, labels, unit_options, numbered_from(unit_callback, offset), finished);
       add_cost(result, spent);
       result.iterations += offset;
       result.kept_iteration += offset;
