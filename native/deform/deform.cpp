@@ -75,8 +75,7 @@ DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>&
   run->options = options;
   run->labels = labels;
   run->callback = callback;
-  run->deformation = std::make_unique<Deformation>(mesh, run->labels, run->options, run->callback);
-  run->deformation->near = near;
+  run->deformation = std::make_unique<Deformation>(mesh, run->labels, run->options, run->callback, near);
   run->deformation->near_start = near_start;
   run->deformation->hand_over_unflat = hand_over_unflat;
   DeformResult result = iterate(*run->deformation, run->planes);

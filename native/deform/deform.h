@@ -218,7 +218,10 @@ struct DeformResult {
   // small local solves of flattening (ChartPlanes::solve_near) are not
   // counted, like their factorisations.
   int back_substitutions = 0;
-  std::string solver;  // the factorisation used (sparse_cholesky.h)
+  // The input's factorisation used (sparse_cholesky.h); a run that never
+  // made one (from near a polycube) reports the first of the runs it adds
+  // the cost of (add_cost) that did.
+  std::string solver;
   PhaseSeconds seconds;
   StageSeconds stages;
   // With DeformOptions::time_references: one numeric factorisation of the

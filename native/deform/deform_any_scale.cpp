@@ -425,6 +425,7 @@ void add_cost(DeformResult& into, const DeformResult& from) {
   t.total += u.total, t.assemble += u.assemble, t.factorize += u.factorize, t.rotations += u.rotations;
   t.solve += u.solve, t.measure += u.measure;
   into.factorizations += from.factorizations;
+  if (into.solver.empty()) into.solver = from.solver;
   into.back_substitutions += from.back_substitutions;
   StageSeconds& a = into.stages;
   const StageSeconds& b = from.stages;

@@ -31,7 +31,7 @@ std::vector<int> spread(const std::vector<int>& face_labels, const Triangulation
 }  // namespace
 
 Deformation::Deformation(const PolygonMesh& mesh, const std::vector<int>& labels, const DeformOptions& options,
-                         const IterationCallback& callback)
+                         const IterationCallback& callback, Vertices near_polycube)
     : mesh(mesh),
       given_labels(labels),
       options(options),
@@ -42,11 +42,14 @@ Deformation::Deformation(const PolygonMesh& mesh, const std::vector<int>& labels
       triangle_labels(spread(filled_labels, triangulation)),
       n(static_cast<int>(mesh.vertices.rows())),
       laplacian(n, triangulation.triangles),
-      analysis(options.start.size() == 0 ? std::async(std::launch::async, [this] { analyze(); }) : std::future<void>()),
+      analysis(options.start.size() == 0 && near_polycube.size() == 0
+                   ? std::async(std::launch::async, [this] { analyze(); })
+                   : std::future<void>()),
       parts(components(n, triangulation.triangles)),
       centroids(component_centroids(mesh.vertices, parts)),
       quality(mesh.vertices, triangulation.triangles, triangle_labels),
-      x(mesh.vertices) {
+      x(mesh.vertices),
+      near(std::move(near_polycube)) {
   result.labels = filled_labels;
   result.unlabelled_faces = static_cast<int>(std::count(labels.begin(), labels.end(), kUnlabelled));
   result.triangles = static_cast<int>(triangles().rows());
@@ -67,9 +70,16 @@ Deformation::Deformation(const PolygonMesh& mesh, const std::vector<int>& labels
   // A robust run from a start that is already a polycube (the polish's,
   // polish_stage.h) never solves with the input's Laplacian: its ordering
   // would be computed for nothing.
+  const bool robust_exact = options.variant == Variant::kRobust && result.converged;
   if (analysis.valid())
     analysis.get();
-  else if (!(options.variant == Variant::kRobust && result.converged))
+  else if (near.size() > 0 && !robust_exact)
+    // A run from near a polycube solves with the input's Laplacian only if
+    // flatten_near is refused: otherwise its analysis and factorisation, in
+    // each of stage 8's further runs at scale and in the coarse route's fine
+    // run (docs/design.md section 2.8), would be made for nothing.
+    factorization_released = true;
+  else if (!robust_exact)
     analyze();
   stage = &result.stages.continuous;
 }
@@ -179,7 +189,7 @@ DeformResult Deformation::conclude() {
     result.given_labels_figures = result.figures;
   }
   result.factorizations += factorization.factorizations();
-  result.solver = factorization.backend();
+  if (factorization.factorizations() > 0) result.solver = factorization.backend();
   result.seconds.total = total.lap();
   if (options.time_references) {
     // The median of three of each: one timing on a shared machine is noise.
@@ -193,7 +203,7 @@ DeformResult Deformation::conclude() {
       std::sort(seconds.begin(), seconds.end());
       return seconds[1];
     };
-    if (factorization.factorizations() > 0) {
+    if (factorization.factorizations() > 0 || factorization_released) {
       // Freed once the charts were flat: restored for the reference, after
       // the run's peak. The floor `make bench` states (docs/design.md section
       // 2.6, "Cost") is one numeric factorisation of this matrix, with its

@@ -6,10 +6,13 @@
 // what is paid per iteration is in them.
 //
 // Inputs of the constructor: a mesh already in the unit box that passed
-// check_input, its labels per polygon face (-1..5) and the options. It fills
-// unlabelled faces with their nearest axis, measures the input (and the
-// start shape, if any) and analyses the Laplacian's pattern; it does not
-// assemble or factorise.
+// check_input, its labels per polygon face (-1..5), the options and, for a
+// robust run, an exact polycube to flatten from first (`near`, may be
+// empty). It fills unlabelled faces with their nearest axis, measures the
+// input (and the start shape, if any) and analyses the Laplacian's pattern,
+// unless the run starts near a polycube: then the input's Laplacian is
+// analysed and factorised only if the run needs it (flatten_near refused,
+// flatten_stage.h). It does not assemble or factorise.
 #pragma once
 
 #include <chrono>
@@ -77,7 +80,7 @@ bool converged(const Figures& figures, double tolerance_deg, Eigen::Index triang
 
 struct Deformation {
   Deformation(const PolygonMesh& mesh, const std::vector<int>& labels, const DeformOptions& options,
-              const IterationCallback& callback);
+              const IterationCallback& callback, Vertices near = Vertices());
 
   const PolygonMesh& mesh;  // in the unit box
   const std::vector<int>& given_labels;
@@ -101,6 +104,8 @@ struct Deformation {
   QualityMeasure quality;
   Vertices x;                         // the current positions
 
+  // The input's factorisation is not held (freed, or deferred by a run
+  // starting near a polycube): restore_factorization() makes it.
   bool factorization_released = false;
   CotangentWeights weights;
   double shift = 0.0;
@@ -147,7 +152,7 @@ struct Deformation {
   // The input's factorisation freed while other systems are factorised (the
   // flat charts'), so that the two are never in memory together, and
   // restored when it is needed again: the same matrix and ordering give the
-  // same factor.
+  // same factor (a deferred one is analysed then).
   void release_factorization();
   void restore_factorization();
   // The analysis of the input Laplacian's pattern, for the variant.

@@ -53,7 +53,7 @@ RobustRun::RobustRun(Deformation& deformation) : d(deformation) {
     ordered = std::make_unique<ChartPlanes>(d.n, d.triangles(), d.triangle_labels);
     run_tasks(2, [&](int i) {
       if (i == 0) {
-        d.factorization.factorize(d.laplacian.matrix());
+        if (!d.factorization_released) d.factorization.factorize(d.laplacian.matrix());
         return;
       }
       ordered->order(d.laplacian.matrix());

@@ -578,6 +578,43 @@ TEST(Robust, PolishOnTheFinishedRunIsThePolishOnItsOwn) {
   EXPECT_EQ(d.result.figures.area_error, own.result.figures.area_error);
 }
 
+// A run from near a polycube (stage 8's further runs at scale, the coarse
+// route's fine run) solves with the input's Laplacian only when flatten_near
+// is refused: kept, the input is never factorised (the reference timings
+// still are, after the run); refused, the run goes on from the input with
+// the factorisation it defers, and ends as a run without `near` does.
+TEST(Robust, RunFromNearAPolycubeFactorisesTheInputOnlyWhenRefused) {
+  const Model model = load("B0");
+  if (model.mesh.faces.count() == 0) GTEST_SKIP() << "B0 is missing";
+  const UnitBoxMesh unit(model.mesh);
+  const PolygonMesh& mesh = unit.mesh();
+  DeformOptions o = options(Variant::kRobust);
+  o.time_references = true;
+  std::unique_ptr<FinishedRun> own_finished, near_finished, refused_finished;
+  const DeformResult own = deform_in_unit_box(mesh, model.labels, o, {}, own_finished);
+  ASSERT_TRUE(own.converged);
+  EXPECT_GT(own_finished->deformation->factorization.factorizations(), 0);
+
+  const DeformResult near =
+      deform_in_unit_box(mesh, own.labels, o, {}, near_finished, own.positions, UntangleStart::local_only);
+  EXPECT_TRUE(near.converged);
+  EXPECT_EQ(near.flat_iteration, 1);
+  EXPECT_EQ(near.figures.flipped_faces, 0);
+  EXPECT_LE(near.figures.collapsed_faces, own.figures.collapsed_faces);
+  EXPECT_GT(near.reference_factorize_seconds, 0.0);  // made for the reference alone
+  EXPECT_TRUE(near.solver.empty());                   // the run itself made none
+
+  // Every vertex at one point: all the area collapsed, refused at once.
+  const Vertices point = Vertices::Zero(mesh.vertices.rows(), 3);
+  const DeformResult refused =
+      deform_in_unit_box(mesh, model.labels, o, {}, refused_finished, point, UntangleStart::local_only);
+  ASSERT_FALSE(refused.flatten_attempts.empty());
+  EXPECT_FALSE(refused.flatten_attempts.front().kept);
+  EXPECT_EQ(refused.solver, own.solver);
+  EXPECT_TRUE(refused.converged);
+  EXPECT_TRUE(refused.positions == own.positions);  // bit for bit
+}
+
 TEST(Robust, IsTheDefault) {
   EXPECT_EQ(DeformOptions{}.variant, Variant::kRobust);
   EXPECT_EQ(parse_variant("robust"), Variant::kRobust);
