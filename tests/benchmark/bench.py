@@ -11,8 +11,9 @@ each in its own process (for its peak memory), one row each:
   factorisation of the input's Laplacian, one back-substitution with it and
   one measurement of every figure;
 - on the enlarged models whose labels do not flatten without help
-  (CONTINUOUS_MODELS), the default with `--rerun-from-result` (stage 8's
-  further runs from the result instead of the input);
+  (CONTINUOUS_MODELS), the default with `--coarse-triangles 0`: the mesh
+  deformed at its own resolution, what the coarse route (docs/design.md
+  section 2.8) saves;
 - the paper-literal variant (`current`: refactorise every iteration) to the
   same tolerance, or the same iteration limit;
 - `fixed` for --scipy-compare-iterations against the NumPy/SciPy reference
@@ -71,7 +72,7 @@ MODELS = [  # name, mesh, labels, refinement levels to reach about a million tri
 # per iteration, and the one that reaches its exact polycube they are held to.
 CONTINUOUS_MODELS = ("fandisk x64", "armadillo x16", "bunny00 x16")
 EXACT_MODEL = "B0 x64"
-RERUN_VARIANT = "robust --rerun-from-result"
+OWN_RESOLUTION_VARIANT = "robust --coarse-triangles 0"
 
 # The paper-literal variant can fall back to the slow LDLT factorisation on
 # large meshes (indefinite Laplacian) and would hold the benchmark for hours.
@@ -244,15 +245,17 @@ def failed_row(name, variant, error):
     return row
 
 
-def rerun_text(by_key, model, exact_seconds):
-    """The --rerun-from-result run of `model` beside the default's line, against the exact model."""
-    quick = by_key.get((model, RERUN_VARIANT))
-    if not quick or not isinstance(quick.get("seconds_total"), float):
+def own_resolution_text(by_key, model, exact_seconds):
+    """The run of `model` at its own resolution beside the default's line, against the exact model."""
+    own = by_key.get((model, OWN_RESOLUTION_VARIANT))
+    if not own:
         return ""
-    text = f"; with --rerun-from-result {quick['seconds_total']:.1f} s"
+    if not isinstance(own.get("seconds_total"), float):
+        return f"; at its own resolution {own.get('converged')} ({own.get('message', '')})"
+    text = f"; at its own resolution {own['seconds_total']:.1f} s"
     if exact_seconds:
-        text += f" = {quick['seconds_total'] / exact_seconds:.2f} x {EXACT_MODEL}"
-    return text + f", {100 * quick.get('collapsed_area', float('nan')):.3f}% collapsed"
+        text += f" = {own['seconds_total'] / exact_seconds:.2f} x {EXACT_MODEL}"
+    return text + f", {100 * own.get('collapsed_area', float('nan')):.3f}% collapsed"
 
 
 def checks(rows, iterations):
@@ -285,7 +288,7 @@ def checks(rows, iterations):
         if not row.get("continuous_count"):
             # Flat before any continuous iteration (or no run at all): nothing to hold to the target.
             lines.append(f"- {model}: no continuous iteration ({row['iterations']} iterations, "
-                         f"{row['seconds_total']:.1f} s{flattening})" + rerun_text(by_key, model, exact_seconds))
+                         f"{row['seconds_total']:.1f} s{flattening})" + own_resolution_text(by_key, model, exact_seconds))
             continue
         units = row.get("continuous_units", float("nan"))
         text = (f"- {model}: continuous iteration {row['continuous_per'] + row['measure_per']:.3f} s (measurement "
@@ -296,7 +299,7 @@ def checks(rows, iterations):
             text += (f"; {row['iterations']} iterations {row['seconds_total']:.1f} s = "
                      f"{row['seconds_total'] / exact_seconds:.2f} x {EXACT_MODEL} exact ({exact_seconds:.1f} s) "
                      "[target <= 2]")
-        lines.append(text + rerun_text(by_key, model, exact_seconds))
+        lines.append(text + own_resolution_text(by_key, model, exact_seconds))
     if exact and isinstance(exact.get("ratio_floor"), float):
         stages = ", ".join(f"{stage} {exact[f'{stage}_seconds']:.1f} s" for stage in STAGES if exact[f"{stage}_count"])
         lines.append(f"- {EXACT_MODEL}: {exact['seconds_total']:.1f} s = {exact['ratio_floor']:.2f} x floor "
@@ -406,14 +409,14 @@ def bench_case(program, name, mesh, labels, args, add_row):
     except RunError as error:
         add_row(failed_row(name, args.default_variant, error))
         say(f"default {error}, ")
-    if "rerun" in args.variants and name in CONTINUOUS_MODELS:
+    if "own" in args.variants and name in CONTINUOUS_MODELS:
         try:
-            quick = run(args.default_variant, args.iterations, args.tolerance, ["--rerun-from-result"])
-            say(f"from the result {quick['seconds']['total']:.2f}s, ")
-            add_row(report_row(name, RERUN_VARIANT, quick))
+            own = run(args.default_variant, args.iterations, args.tolerance, ["--coarse-triangles", "0"])
+            say(f"at its own resolution {own['seconds']['total']:.2f}s, ")
+            add_row(report_row(name, OWN_RESOLUTION_VARIANT, own))
         except RunError as error:
-            add_row(failed_row(name, RERUN_VARIANT, error))
-            say(f"from the result {error}, ")
+            add_row(failed_row(name, OWN_RESOLUTION_VARIANT, error))
+            say(f"at its own resolution {error}, ")
     if "current" in args.variants:
         try:
             paper = run("current", args.iterations, args.tolerance)
@@ -456,8 +459,8 @@ def main():
     parser.add_argument("--tolerance", type=float, default=0.5)
     parser.add_argument("--timeout", type=float, default=TIMEOUT_SECONDS, help="seconds before a run is a bound")
     parser.add_argument("--default-variant", default="robust")
-    parser.add_argument("--variants", default="rerun,current,fixed",
-                        help="other runs besides the default (rerun: --rerun-from-result on CONTINUOUS_MODELS, "
+    parser.add_argument("--variants", default="own,current,fixed",
+                        help="other runs besides the default (own: --coarse-triangles 0 on CONTINUOUS_MODELS, "
                              "current: the paper, fixed: against SciPy)")
     parser.add_argument("--scipy-iterations", type=int, default=5, help="SciPy iterations actually timed")
     parser.add_argument("--scipy-compare-iterations", type=int, default=50,

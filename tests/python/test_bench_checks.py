@@ -35,13 +35,23 @@ def test_without_the_exact_run_a_bound_is_only_stated():
     assert lines == ["- bunny00 x16: timed out (stopped after 480 s)"]
 
 
-def test_the_run_from_the_result_stands_beside_the_default():
-    # fandisk x64 flattens before any continuous iteration; its run with
-    # --rerun-from-result is stated on the same line against the exact model.
+def test_the_run_at_its_own_resolution_stands_beside_the_default():
+    # fandisk x64 flattens before any continuous iteration; its run at its
+    # own resolution is stated on the same line against the exact model.
     default = {"model": "fandisk x64", "variant": "robust", "converged": True, "seconds_total": 144.0,
                "iterations": 13, "continuous_count": 0, "flatten_count": 3, "flatten_per": 40.0}
-    quick = {"model": "fandisk x64", "variant": bench.RERUN_VARIANT, "converged": True, "seconds_total": 74.0,
-             "collapsed_area": 0.00108}
-    lines = bench.checks([default, quick, exact_row(20.0)], 50)
+    own = {"model": "fandisk x64", "variant": bench.OWN_RESOLUTION_VARIANT, "converged": True, "seconds_total": 74.0,
+           "collapsed_area": 0.00108}
+    lines = bench.checks([default, own, exact_row(20.0)], 50)
     line = next(line for line in lines if line.startswith("- fandisk x64"))
-    assert line.endswith("; with --rerun-from-result 74.0 s = 3.70 x B0 x64, 0.108% collapsed"), line
+    assert line.endswith("; at its own resolution 74.0 s = 3.70 x B0 x64, 0.108% collapsed"), line
+
+
+def test_a_run_at_its_own_resolution_that_timed_out_is_stated_as_such():
+    default = {"model": "bunny00 x16", "variant": "robust", "converged": True, "seconds_total": 70.0,
+               "iterations": 25, "continuous_count": 0, "flatten_count": 4, "flatten_per": 4.0}
+    own = stopped_row("bunny00 x16", 480.0)
+    own["variant"] = bench.OWN_RESOLUTION_VARIANT
+    lines = bench.checks([default, own, exact_row(20.0)], 50)
+    line = next(line for line in lines if line.startswith("- bunny00 x16"))
+    assert line.endswith("; at its own resolution timed out (stopped after 480 s)"), line
