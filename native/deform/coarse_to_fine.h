@@ -4,7 +4,9 @@
 // and last resort included), its polycube carried back to the fine vertices,
 // and the fine mesh's own run started from there (flatten_near,
 // flatten_stage.h), where it only flattens what the carrying left bent,
-// relaxes and polishes.
+// relaxes and polishes. That run and stage 8's further runs after it start
+// near a polycube or not at all (NearStart::or_nothing): from the input each
+// would be the whole run the route saves.
 //
 // Why: at scale the robust variant's time goes to untangling the slivers its
 // flat charts collapse and to stage 8's further runs, each a whole run

@@ -69,7 +69,7 @@ DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>&
 
 DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>& labels, const DeformOptions& options,
                                 const IterationCallback& callback, std::unique_ptr<FinishedRun>& finished,
-                                const Vertices& near, UntangleStart near_start, bool hand_over_unflat) {
+                                const Vertices& near, NearStart near_start, bool hand_over_unflat) {
   check_run(mesh, labels, options);
   auto run = std::make_unique<FinishedRun>();
   run->options = options;

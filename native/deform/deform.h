@@ -119,6 +119,13 @@ struct DeformOptions {
   std::function<bool()> stop_requested;
 };
 
+// Stage 9 (docs/design.md section 2.6): a run that ends without an exact
+// polycube is run once more, its flattening refused only above this share
+// of the area collapsed. An exact polycube with holes beats no polycube
+// (such a run returns its best state, often the input), and the further
+// runs of stage 8 then reopen what they can.
+constexpr double kLastResortCollapsedShare = 0.5;
+
 struct PhaseSeconds {
   double total = 0, assemble = 0, factorize = 0, rotations = 0, solve = 0, measure = 0;
 };

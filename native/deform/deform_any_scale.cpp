@@ -93,13 +93,6 @@ struct RerunBudget {
     return true;
   }
 };
-// Stage 9 (docs/design.md section 2.6): a run that ends without an exact
-// polycube is run once more, its flattening refused only above this share
-// of the area collapsed. An exact polycube with holes beats no polycube
-// (such a run returns its best state, often the input), and the further
-// runs of stage 8 then reopen what they can.
-constexpr double kLastResortCollapsedShare = 0.5;
-
 // What the further runs need of the mesh, built once for all of them.
 struct RerunMesh {
   explicit RerunMesh(const PolygonMesh& mesh)
@@ -114,7 +107,7 @@ struct RerunMesh {
   std::vector<std::vector<int>> edges_of_face;
   LabelEnergy energy;  // the labeller's, for the re-cut and the repair
   // How the further runs from the result untangle (untangle_flat_charts.h).
-  UntangleStart near_start = UntangleStart::local_then_global;
+  NearStart near_start;
 };
 
 // A run the caller does not see (its iterations start again from the
@@ -124,7 +117,7 @@ struct RerunMesh {
 // turned over and no more edges folded than the input's. What it leaves for a polish goes to `finished`.
 DeformResult silent_run(const PolygonMesh& mesh, const std::vector<int>& labels, const DeformOptions& options,
                         std::unique_ptr<FinishedRun>& finished, const Vertices& near = Vertices(),
-                        UntangleStart near_start = UntangleStart::local_then_global) {
+                        NearStart near_start = NearStart()) {
   DeformResult run = deform_in_unit_box(mesh, labels, options, IterationCallback{}, finished, near, near_start);
   run.converged = !run.stopped && run.converged && run.figures.flipped_faces == 0 &&
                   run.figures.folded_edges <= run.input_folded_edges;
@@ -461,7 +454,7 @@ DeformResult deform(const PolygonMesh& input, const std::vector<int>& labels, co
   for (int f = 0; f < mesh.faces.count(); ++f) triangles += std::max(mesh.faces.size(f) - 2, 0);
   const bool route = coarse_route_applies(unit_options, triangles);
   DeformResult result = deform_in_unit_box(mesh, labels, unit_options, unit_callback, finished, Vertices(),
-                                           UntangleStart::local_then_global, route);
+                                           NearStart(), route);
   bool coarse = false;
   if (result.handed_over) {
     const DeformResult handed_over = std::move(result);
@@ -514,10 +507,13 @@ DeformResult deform(const PolygonMesh& input, const std::vector<int>& labels, co
   if (coarse) {
     unit_options.rerun_from_result = true;
     unit_options.coarse_triangles = 0;
+    // Labels that flattened in the coarse run's last resort flatten the
+    // same way at full resolution.
+    if (result.last_resort) unit_options.max_collapsed_share = kLastResortCollapsedShare;
   }
   if (robust && options.relabel_collapsed && result.converged && result.figures.collapsed_faces > 0) {
     if (!shared) shared = std::make_unique<RerunMesh>(mesh);
-    if (coarse) shared->near_start = UntangleStart::local_only;
+    if (coarse) shared->near_start = {UntangleStart::local_only, true};
     const double triangles = static_cast<double>(shared->triangulation.triangles.rows());
     RerunBudget budget;
     bool crawled = false;

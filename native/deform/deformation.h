@@ -73,6 +73,20 @@ class StageTimer {
   Stopwatch clock_;
 };
 
+// How a run given an exact polycube of nearly its labels starts from it
+// (Deformation::near, flatten_near in flatten_stage.h).
+struct NearStart {
+  // How the untangling starts (untangle_flat_charts.h): stage 8's further
+  // runs finish with a global round, a coarse polycube carried back
+  // (coarse_to_fine.h) does not.
+  UntangleStart untangle = UntangleStart::local_then_global;
+  // A refused flatten_near ends the run there, not converged, instead of
+  // going on from the input: after the coarse route, a run from the input
+  // at full resolution is the whole cost the route saves (armadillo refined
+  // 16 times: a further run refused near the result went on for minutes).
+  bool or_nothing = false;
+};
+
 // Below the tolerance, and not by collapsing: collapsed triangles are left out
 // of the normal figures, so a mesh squeezed flat or to a point would pass
 // (the paper's `current` variant does that to armadillo and bunny00).
@@ -123,10 +137,7 @@ struct Deformation {
   // flatten from before fitting (flatten_near, flatten_stage.h); empty: none,
   // or read already (freed once the run's first iteration has tried it).
   Vertices near;
-  // How flatten_near's untangling starts (untangle_flat_charts.h): stage 8's
-  // further runs finish with a global round, a coarse polycube carried back
-  // (coarse_to_fine.h) does not.
-  UntangleStart near_start = UntangleStart::local_then_global;
+  NearStart near_start;
   // Stop at the first flattening attempt that the flat solve alone does not
   // make exact (DeformResult::handed_over): labels that do not flatten
   // without help, at a scale where the coarse route (coarse_to_fine.h)

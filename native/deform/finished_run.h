@@ -33,12 +33,12 @@ struct FinishedRun {
 };
 
 // deform_in_unit_box() (deform.h), keeping what the run leaves in `finished`;
-// `near`, when not empty: Deformation::near, untangled from `near_start`
-// (Deformation::near_start); `hand_over_unflat`: Deformation's.
+// `near`, when not empty: Deformation::near, started from as `near_start`
+// says; `hand_over_unflat`: Deformation's.
 DeformResult deform_in_unit_box(const PolygonMesh& mesh, const std::vector<int>& labels, const DeformOptions& options,
                                 const IterationCallback& callback, std::unique_ptr<FinishedRun>& finished,
                                 const Vertices& near = Vertices(),
-                                UntangleStart near_start = UntangleStart::local_then_global,
+                                NearStart near_start = NearStart(),
                                 bool hand_over_unflat = false);
 
 }  // namespace polycube

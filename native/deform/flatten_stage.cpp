@@ -97,7 +97,7 @@ bool flatten_near(RobustRun& run, const Vertices& near, int iteration) {
   const Vertices flat = snap_to_charts(near, *planes);
   CollapseBound bound;
   bound.area = d.options.max_collapsed_share;
-  UntangleStep opened = untangle_step(run, flat, *planes, bound, d.near_start);
+  UntangleStep opened = untangle_step(run, flat, *planes, bound, d.near_start.untangle);
   const double untangle_seconds = d.phase.lap();
   result.seconds.solve += untangle_seconds;
   const double collapsed = opened.fold_free ? d.quality.collapsed_area_fraction(opened.states) : 1.0;
@@ -108,7 +108,7 @@ bool flatten_near(RobustRun& run, const Vertices& near, int iteration) {
   attempt.untangle_rounds = opened.rounds;
   attempt.untangle_seconds = untangle_seconds;
   if (!kept) {
-    d.restore_factorization();  // the run goes on from the input
+    if (!d.near_start.or_nothing) d.restore_factorization();  // the run goes on from the input
     result.seconds.factorize += d.phase.lap();
     attempt.seconds = clock.lap();
     return false;

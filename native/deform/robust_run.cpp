@@ -124,6 +124,8 @@ std::unique_ptr<ChartPlanes> robust_iteration(Deformation& d) {
       exact = true;
       first = 2;
       if (!d.finish_iteration(1, &run.state)) return std::move(run.planes);
+    } else if (d.near_start.or_nothing) {
+      return std::move(run.planes);
     }
   }
   double best_max = run.state.max_deviation_deg;

@@ -596,7 +596,7 @@ TEST(Robust, RunFromNearAPolycubeFactorisesTheInputOnlyWhenRefused) {
   EXPECT_GT(own_finished->deformation->factorization.factorizations(), 0);
 
   const DeformResult near =
-      deform_in_unit_box(mesh, own.labels, o, {}, near_finished, own.positions, UntangleStart::local_only);
+      deform_in_unit_box(mesh, own.labels, o, {}, near_finished, own.positions, {UntangleStart::local_only});
   EXPECT_TRUE(near.converged);
   EXPECT_EQ(near.flat_iteration, 1);
   EXPECT_EQ(near.figures.flipped_faces, 0);
@@ -607,12 +607,23 @@ TEST(Robust, RunFromNearAPolycubeFactorisesTheInputOnlyWhenRefused) {
   // Every vertex at one point: all the area collapsed, refused at once.
   const Vertices point = Vertices::Zero(mesh.vertices.rows(), 3);
   const DeformResult refused =
-      deform_in_unit_box(mesh, model.labels, o, {}, refused_finished, point, UntangleStart::local_only);
+      deform_in_unit_box(mesh, model.labels, o, {}, refused_finished, point, {UntangleStart::local_only});
   ASSERT_FALSE(refused.flatten_attempts.empty());
   EXPECT_FALSE(refused.flatten_attempts.front().kept);
   EXPECT_EQ(refused.solver, own.solver);
   EXPECT_TRUE(refused.converged);
   EXPECT_TRUE(refused.positions == own.positions);  // bit for bit
+
+  // Near or nothing (the coarse route's runs at full resolution): refused,
+  // the run ends there, the input returned, nothing solved with its Laplacian.
+  std::unique_ptr<FinishedRun> nothing_finished;
+  const DeformResult nothing =
+      deform_in_unit_box(mesh, model.labels, o, {}, nothing_finished, point, {UntangleStart::local_only, true});
+  EXPECT_FALSE(nothing.converged);
+  EXPECT_EQ(nothing.iterations, 0);
+  EXPECT_EQ(nothing.flatten_attempts.size(), 1u);
+  EXPECT_EQ(nothing.factorizations, 0);
+  EXPECT_TRUE(nothing.positions == mesh.vertices);
 }
 
 TEST(Robust, IsTheDefault) {
