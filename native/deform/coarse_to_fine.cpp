@@ -167,9 +167,9 @@ bool coarse_to_fine(const PolygonMesh& mesh, const std::vector<int>& labels, con
   // Labels that flatten only in the last resort (their coarse polycube
   // collapses more than 12% of the area) flatten the same way here: the
   // carried polycube collapses what the coarse one did, and the fine run's
-  // relaxation and further runs reopen what the finer mesh leaves room for
-  // (armadillo refined 16 times, nearest labels: 21% collapsed coarse, 6.1%
-  // at the end, where its own run reached 15.3%).
+  // relaxation reopens what the finer mesh leaves room for (armadillo
+  // refined 16 times, nearest labels: 21% collapsed coarse, 6.1% at the end,
+  // where its own run reached 15.3%; both its further runs were refused).
   DeformOptions fine_options = options;
   if (coarse_result.last_resort) fine_options.max_collapsed_share = kLastResortCollapsedShare;
   DeformResult fine_result = deform_in_unit_box(mesh, fine, fine_options, numbered_from(callback, offset), fine_finished,
