@@ -2,6 +2,7 @@
 
 #include <Eigen/Cholesky>
 #include <algorithm>
+#include <array>
 #include <type_traits>
 #include <utility>
 
@@ -227,15 +228,25 @@ SparseCholesky::Ordering joined_ordering(const SparseCholesky::Ordering& ordered
 
 void ChartPlanes::order(const Eigen::SparseMatrix<double>& laplacian) {
   const int n = static_cast<int>(laplacian.rows());
-  std::vector<int> of_root, unknown;
+  std::vector<int> of_root, axes;
+  std::array<int, 3> unknowns{};
+  std::array<std::vector<int>, 3> unknown;
   for (int axis = 0; axis < 3; ++axis) {
     if (chart_orderings_[axis] || !charts_only_[axis]) continue;
-    const int m = number_unknowns(axis, n, of_root, unknown);
-    SparseCholesky analysis;
-    analysis.analyze(reduced_matrix(laplacian, unknown, m));
-    chart_orderings_[axis] =
-        std::make_shared<const ChartOrdering>(ChartOrdering{analysis.ordering(), unknown, analysis.copy_analysis()});
+    // Serial: finding roots compresses paths.
+    unknowns[axis] = number_unknowns(axis, n, of_root, unknown[axis]);
+    axes.push_back(axis);
   }
+  // As in factorize(): the largest first, the other two after it on a
+  // second thread when one is free (inside another task, one after the other).
+  std::stable_sort(axes.begin(), axes.end(), [&](int a, int b) { return unknowns[a] > unknowns[b]; });
+  run_tasks(static_cast<int>(axes.size()), [&](int i) {
+    const int axis = axes[i];
+    SparseCholesky analysis;
+    analysis.analyze(reduced_matrix(laplacian, unknown[axis], unknowns[axis]));
+    chart_orderings_[axis] = std::make_shared<const ChartOrdering>(
+        ChartOrdering{analysis.ordering(), std::move(unknown[axis]), analysis.copy_analysis()});
+  });
 }
 
 void ChartPlanes::use_orderings(const ChartPlanes& ordered) {

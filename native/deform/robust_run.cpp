@@ -47,15 +47,11 @@ RobustRun::RobustRun(Deformation& deformation) : d(deformation) {
   d.shift = d.laplacian.assemble(d.weights, kRelativeShift);
   result.seconds.assemble += d.phase.lap();
   if (!result.converged) {
-    // On a second thread meanwhile, what needs only the positions, the
-    // labels and the Laplacian's pattern: the flat charts' orderings, the
-    // start's states and the first fitting step's right-hand side.
+    // What needs only the positions, the labels and the Laplacian's
+    // pattern: the flat charts' orderings, the start's states and the
+    // first fitting step's right-hand side.
     ordered = std::make_unique<ChartPlanes>(d.n, d.triangles(), d.triangle_labels);
-    run_tasks(2, [&](int i) {
-      if (i == 0) {
-        if (!d.factorization_released) d.factorization.factorize(d.laplacian.matrix());
-        return;
-      }
+    const auto order_charts = [&] {
       ordered->order(d.laplacian.matrix());
       if (d.n >= kOrderedFactorFrom) {
         // At the lowest priority: it takes the time the input's
@@ -70,9 +66,28 @@ RobustRun::RobustRun(Deformation& deformation) : d(deformation) {
           ordered->factorize(d.laplacian.matrix(), 1);
         });
       }
+    };
+    const auto prepare_fit = [&] {
+      // A run from near a polycube that ends there when not flat never
+      // fits from the input.
+      if (d.near.size() > 0 && d.near_start.or_nothing) return;
       state = d.quality.face_states(d.x);
       first_fit_rhs = fitted_rhs(d.mesh.vertices, d.x, d.triangles(), d.triangle_labels, d.weights, d.shift);
-    });
+    };
+    if (d.factorization_released) {
+      // Nothing factorised meanwhile (a run from near a polycube): the
+      // axes' orderings take both threads (stage 8's further runs at a
+      // million triangles: 1.6 s each, most of their set-up).
+      order_charts();
+      prepare_fit();
+    } else {
+      // On a second thread, beside the input's factorisation.
+      run_tasks(2, [&](int i) {
+        if (i == 0) return d.factorization.factorize(d.laplacian.matrix());
+        order_charts();
+        prepare_fit();
+      });
+    }
   } else {
     state = d.quality.face_states(d.x);
   }
