@@ -6,6 +6,7 @@
 
 #include "deform/deformation.h"
 #include "deform/finished_run.h"
+#include "deform/keep_opposites_apart.h"
 #include "deform/untangle_flat_charts.h"
 #include "labels/axis.h"
 #include "labels/nearest_labels.h"
@@ -51,10 +52,9 @@ std::vector<int> carried_labels(const Triangulation& triangulation, const std::v
 // faces, 0.64% of its area). Each tooth takes that other chart's label (its
 // boundary one edge shorter, so this ends), among the faces the relabelling
 // changed and their neighbours.
-void without_teeth(const PolygonMesh& mesh, const std::vector<int>& given, std::vector<int>& labels) {
-  const MeshAdjacency adjacency = mesh_adjacency(mesh.faces, static_cast<int>(mesh.vertices.rows()));
+void without_teeth(const PolygonMesh& mesh, const std::vector<std::vector<int>>& neighbours,
+                   const std::vector<int>& given, std::vector<int>& labels) {
   const int faces = mesh.faces.count();
-  const std::vector<std::vector<int>> neighbours = face_neighbours(adjacency, faces);
   std::vector<int> queue;
   std::vector<char> queued(faces, 0);
   const auto push = [&](int f) {
@@ -157,7 +157,10 @@ bool coarse_to_fine(const PolygonMesh& mesh, const std::vector<int>& labels, con
   if (!coarse_result.relabelled_faces.empty()) {
     clock.lap();
     fine = carried_labels(triangulation, fine, decimation, coarse_result.labels);
-    without_teeth(mesh, given, fine);
+    const std::vector<std::vector<int>> neighbours = face_neighbours(
+        mesh_adjacency(mesh.faces, static_cast<int>(mesh.vertices.rows())), mesh.faces.count());
+    without_teeth(mesh, neighbours, given, fine);
+    keep_opposites_apart(mesh, neighbours, given, fine);
     own_seconds += clock.lap();
   }
   clock.lap();

@@ -19,15 +19,23 @@ std::vector<int> relabel_collapsed_faces(const std::vector<std::vector<int>>& ne
       std::array<int, 6> votes{};
       for (int g : neighbours[f])
         if (!waiting[g] && labels[g] != labels[f] && labels[g] != (labels[f] ^ 1)) ++votes[labels[g]];
+      // Not back to back with a neighbour: the edge between two faces of
+      // opposite labels folds unless one of them stays collapsed.
+      for (int g : neighbours[f]) votes[labels[g] ^ 1] = 0;
       const int best = static_cast<int>(std::max_element(votes.begin(), votes.end()) - votes.begin());
       if (votes[best] > 0) moves.emplace_back(f, best);
     }
-    if (moves.empty()) break;
+    int made = 0;
     for (const auto& [face, label] : moves) {
+      // Nor with a neighbour relabelled earlier in this sweep.
+      const auto& around = neighbours[face];
+      if (std::any_of(around.begin(), around.end(), [&](int g) { return labels[g] == (label ^ 1); })) continue;
       labels[face] = label;
       waiting[face] = 0;
       changed.push_back(face);
+      ++made;
     }
+    if (made == 0) break;
   }
   std::sort(changed.begin(), changed.end());
   return changed;

@@ -16,10 +16,15 @@
 // In/out:
 //   labels      per polygon face, 0..5; a collapsed face takes, of its
 //               uncollapsed neighbours' labels other than its own and its
-//               opposite, the most frequent (ties: the lowest); faces with
-//               none such wait for a neighbour relabelled in an earlier
-//               sweep (at most max_sweeps), each sweep decided from the
-//               labels before it
+//               opposite and other than any neighbour's opposite, the most
+//               frequent (ties: the lowest); faces with none such wait for a
+//               neighbour relabelled in an earlier sweep (at most
+//               max_sweeps), each sweep decided from the labels before it,
+//               a face whose neighbour took the opposite label earlier in
+//               the sweep waiting too. Opposite labels side by side lie back
+//               to back in the polycube, their edge folded unless one of the
+//               two stays collapsed, and a run folding more edges than its
+//               input is refused (keep_opposites_apart.h).
 // Returns the faces relabelled, ascending.
 #pragma once
 

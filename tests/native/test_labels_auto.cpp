@@ -9,6 +9,7 @@
 #include "deform/deform.h"
 #include "deform/quality.h"
 #include "deform/recut_collapsed_faces.h"
+#include "deform/keep_opposites_apart.h"
 #include "deform/relabel_collapsed_faces.h"
 #include "io/labels_io.h"
 #include "io/read_mesh.h"
@@ -440,6 +441,60 @@ TEST(RelabelCollapsedFaces, TakesTheNeighboursLabelNeverTheOpposite) {
   std::vector<int> row{4, 4, 4, 2};
   EXPECT_EQ(relabel_collapsed_faces({{1}, {0, 2}, {1, 3}, {2}}, {0, 1, 1, 0}, row), (std::vector<int>{1, 2}));
   EXPECT_EQ(row, (std::vector<int>{4, 2, 2, 2}));
+}
+
+// A collapsed face never takes a label opposite a neighbour's: in the
+// polycube the two would lie back to back and their edge would fold.
+TEST(RelabelCollapsedFaces, NeverBackToBackWithANeighbour) {
+  // Face 1 (+Z) collapsed, its neighbours +X, -X and +Y: each has a vote,
+  // +X and -X are opposite each other's face, so +Y.
+  std::vector<int> labels{0, 4, 1, 2};
+  const std::vector<std::vector<int>> star{{1}, {0, 2, 3}, {1}, {1}};
+  EXPECT_EQ(relabel_collapsed_faces(star, {0, 1, 0, 0}, labels), (std::vector<int>{1}));
+  EXPECT_EQ(labels, (std::vector<int>{0, 2, 1, 2}));
+  // Two collapsed faces side by side between +X and -X: each would take its
+  // outer neighbour's label, back to back. The first takes +X; the second,
+  // then between +X and -X, keeps its own.
+  std::vector<int> row{0, 4, 4, 1};
+  EXPECT_EQ(relabel_collapsed_faces({{1}, {0, 2}, {1, 3}, {2}}, {0, 1, 1, 0}, row), (std::vector<int>{1}));
+  EXPECT_EQ(row, (std::vector<int>{0, 0, 4, 1}));
+}
+
+// Faces whose labels were changed and now touch an opposite label take back
+// their own, or a neighbour's opposite none, or the axis nearest their
+// normal opposite none; unchanged faces stay.
+TEST(KeepOppositesApart, UndoesOnlyChangedFacesBackToBack) {
+  // A strip of five triangles in the plane z = 0 (normals +Z), taken as a
+  // chain 0 - 1 - 2 - 3 - 4.
+  PolygonMesh strip;
+  strip.vertices.resize(7, 3);
+  for (int i = 0; i < 7; ++i) strip.vertices.row(i) << i / 2, i % 2, 0.0;
+  for (int t = 0; t < 5; ++t)
+    if (t % 2 == 0)
+      strip.faces.add({t, t + 2, t + 1});
+    else
+      strip.faces.add({t, t + 1, t + 2});
+  const std::vector<std::vector<int>> chain{{1}, {0, 2}, {1, 3}, {2, 4}, {3}};
+  const std::vector<int> given{0, 2, 2, 2, 1};
+  // Face 3 was changed to +X, beside face 4's -X: back to +Y.
+  std::vector<int> labels{0, 2, 2, 0, 1};
+  EXPECT_EQ(keep_opposites_apart(strip, chain, given, labels), (std::vector<int>{3}));
+  EXPECT_EQ(labels, given);
+  // Face 2's own label is opposite a neighbour's too (-Y given, +Y beside):
+  // it takes a neighbour's label opposite none, +X or +Y, the lower of the tie.
+  const std::vector<int> given2{2, 2, 3, 0, 0};
+  labels = {2, 2, 1, 0, 0};
+  EXPECT_EQ(keep_opposites_apart(strip, chain, given2, labels), (std::vector<int>{2}));
+  EXPECT_EQ(labels, (std::vector<int>{2, 2, 0, 0, 0}));
+  // Face 1 between +X and -X, its own label -X: every label at hand is
+  // opposite a neighbour's, so the axis nearest its normal, +Z.
+  const std::vector<int> given3{0, 1, 1, 1, 1};
+  labels = {0, 0, 1, 1, 1};
+  EXPECT_EQ(keep_opposites_apart(strip, chain, given3, labels), (std::vector<int>{1}));
+  EXPECT_EQ(labels, (std::vector<int>{0, 4, 1, 1, 1}));
+  // Nothing changed, nothing undone, even where labels are back to back.
+  labels = {0, 1, 2, 2, 1};
+  EXPECT_TRUE(keep_opposites_apart(strip, chain, labels, labels).empty());
 }
 
 // A side of a box the labels gave to the top chart, flattened to nothing: no
