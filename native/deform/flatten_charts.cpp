@@ -41,7 +41,8 @@ constexpr int kRegionRings = 4;
 FlatCharts flatten_charts(const Vertices& input, const Vertices& current, const Triangles& triangles,
                           const std::vector<int>& triangle_labels, const CotangentWeights& weights,
                           const Eigen::SparseMatrix<double>& laplacian, double shift, const QualityMeasure& quality,
-                          const Placement& place, double max_collapsed, int max_rounds, const ChartPlanes* ordered) {
+                          const Placement& place, double max_collapsed, int max_rounds, const ChartPlanes* ordered,
+                          bool give_up_hopeless) {
   FlatCharts result;
   result.planes = std::make_unique<ChartPlanes>(static_cast<int>(current.rows()), triangles, triangle_labels);
   if (ordered) result.planes->use_chart_factors(*ordered);
@@ -119,6 +120,9 @@ FlatCharts flatten_charts(const Vertices& input, const Vertices& current, const 
     }
     result.collapsed_area = quality.collapsed_area_fraction(result.states);
     if (result.collapsed_area > max_collapsed) return result;
+    if (give_up_hopeless && result.rounds == 1 &&
+        result.states.flipped_count > kHopelessFlippedShare * static_cast<double>(triangles.rows()))
+      return result;
     // When the folds stop getting fewer, the labels ask for more than slivers.
     if (progress.give_up(result.rounds, result.states.flipped_count)) return result;
     if (result.states.flipped_count == 0) {

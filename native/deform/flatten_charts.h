@@ -57,17 +57,29 @@ using Placement = std::function<Vertices(const Eigen::MatrixX3d& solution)>;
 
 constexpr int kFlattenRounds = 30;
 
+// A first solve that turns over more than this share of the triangles is far
+// from what collapsing slivers can make exact: every such attempt measured
+// was refused, after rounds of a second or two each at a million triangles
+// (nearest labels, first solve: bunny00 refined 16 times 6.0%, refused
+// after 4 rounds, 7 s; armadillo refined 16 times 11.7%, 2 rounds), where
+// labels that flatten, or come close, turn over far less (B0 refined 64
+// times 0.006%, fandisk refined 16 and 64 times 0.4%).
+constexpr double kHopelessFlippedShare = 0.01;
+
 // From `current`, with per-triangle labels 0..5 and the (shifted) Laplacian
 // `laplacian` of `weights` (deformation.h). Gives up once more than
 // `max_collapsed` of the input's area is collapsed; tries at most
 // `max_rounds` solves. With `ordered` (ChartPlanes::order, of the same
 // labels and Laplacian), its orderings spare the first solve's, and the
-// factors it has made spare theirs.
+// factors it has made spare theirs. `give_up_hopeless`: gives up after the
+// first solve too when it turns over more than kHopelessFlippedShare of
+// the triangles (a caller with somewhere else to go: the coarse route's
+// hand-over, Deformation::hand_over_unflat).
 FlatCharts flatten_charts(const Vertices& input, const Vertices& current, const Triangles& triangles,
                           const std::vector<int>& triangle_labels, const CotangentWeights& weights,
                           const Eigen::SparseMatrix<double>& laplacian, double shift, const QualityMeasure& quality,
                           const Placement& place, double max_collapsed, int max_rounds = kFlattenRounds,
-                          const ChartPlanes* ordered = nullptr);
+                          const ChartPlanes* ordered = nullptr, bool give_up_hopeless = false);
 
 // One as-rigid-as-possible step inside the flat charts of `planes`: every
 // triangle's input shape fitted onto its axis (fitted_rotations.h), solved

@@ -404,6 +404,36 @@ TEST(FlattenCharts, AtScaleTheChartsFactorsAndAnalysesAreKept) {
   }
 }
 
+// A first flat solve that turns over more than kHopelessFlippedShare of the
+// triangles ends the attempt when the caller asks (the coarse route's
+// hand-over): unflat, the same first solve.
+TEST(FlattenCharts, GivesUpAHopelessAttemptAfterItsFirstSolve) {
+  const std::string path = std::string(POLYCUBE_MESH_DATA) + "/armadillo.off";
+  if (!std::ifstream(path).good()) GTEST_SKIP() << "armadillo.off is missing: run `make data`";
+  const PolygonMesh mesh = read_mesh(path);
+  const int n = static_cast<int>(mesh.vertices.rows());
+  const Triangulation t = triangulate(mesh.vertices, mesh.faces);
+  const std::vector<int> labels = test_meshes::nearest_triangle_labels(mesh, t);
+  const QualityMeasure quality(mesh.vertices, t.triangles, labels);
+  const CotangentWeights weights = cotangent_weights(mesh.vertices, t.triangles).cwiseMax(0.0);
+  Laplacian laplacian(n, t.triangles);
+  const double shift = laplacian.assemble(weights, 1e-8);
+  const auto flatten = [&](bool give_up_hopeless) {
+    return flatten_charts(
+        mesh.vertices, mesh.vertices, t.triangles, labels, weights, laplacian.matrix(), shift, quality,
+        [](const Eigen::MatrixX3d& y) { return y; }, 1.0, kFlattenRounds, nullptr, give_up_hopeless);
+  };
+  const FlatCharts hopeless = flatten(true);
+  EXPECT_FALSE(hopeless.found);
+  EXPECT_EQ(hopeless.rounds, 1);
+  EXPECT_GT(hopeless.states.flipped_count, kHopelessFlippedShare * static_cast<double>(t.triangles.rows()));
+  // Without, the rounds go on (here, no bound on the collapsed area, to a
+  // flat shape that collapses what it must).
+  const FlatCharts tried = flatten(false);
+  EXPECT_GT(tried.rounds, 1);
+  EXPECT_EQ(tried.first_positions, hopeless.first_positions);
+}
+
 // Once the robust variant has flattened the charts, every later iteration
 // (the relaxation) is an exact polycube with nothing folded, and relaxing
 // does not raise the edge error; opening collapsed triangles
