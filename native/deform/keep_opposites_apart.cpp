@@ -32,7 +32,9 @@ std::vector<int> keep_opposites_apart(const PolygonMesh& mesh, const std::vector
           const Eigen::Vector3d normal = newell_normal(mesh.vertices, mesh.faces, f);
           to = -1;
           for (int label = 0; label < 6; ++label)
-            if (!touches_opposite(f, label) && (to < 0 || normal.dot(label_axis(label)) > normal.dot(label_axis(to)))) to = label;
+            if (!touches_opposite(f, label) &&
+                (to < 0 || normal.dot(label_axis(label)) > normal.dot(label_axis(to))))
+              to = label;
           if (to < 0) continue;
         }
       }
