@@ -33,6 +33,26 @@ namespace {
 
 using namespace polycube;
 
+// What flatten_charts() takes of a mesh with its nearest labels: the
+// clamped cotangent Laplacian, shifted, and the quality measure.
+struct FlatSetUp {
+  explicit FlatSetUp(const PolygonMesh& mesh)
+      : n(static_cast<int>(mesh.vertices.rows())),
+        t(triangulate(mesh.vertices, mesh.faces)),
+        labels(test_meshes::nearest_triangle_labels(mesh, t)),
+        quality(mesh.vertices, t.triangles, labels),
+        weights(cotangent_weights(mesh.vertices, t.triangles).cwiseMax(0.0)),
+        laplacian(n, t.triangles),
+        shift(laplacian.assemble(weights, 1e-8)) {}
+  int n;
+  Triangulation t;
+  std::vector<int> labels;
+  QualityMeasure quality;
+  CotangentWeights weights;
+  Laplacian laplacian;
+  double shift;
+};
+
 struct Block {
   Vertices x;
   Triangles triangles;
@@ -369,14 +389,11 @@ TEST(FlattenCharts, RefusesWhatWouldCrushTheModel) {
 TEST(FlattenCharts, AtScaleTheChartsFactorsAndAnalysesAreKept) {
   for (const auto& [mesh, kept] :
        {std::pair{test_meshes::uv_sphere(32, 16), false}, std::pair{test_meshes::uv_sphere(500, 200), true}}) {
-    const int n = static_cast<int>(mesh.vertices.rows());
-    const Triangulation t = triangulate(mesh.vertices, mesh.faces);
-    const std::vector<int> labels = test_meshes::nearest_triangle_labels(mesh, t);
-    const QualityMeasure quality(mesh.vertices, t.triangles, labels);
-    const CotangentWeights weights = cotangent_weights(mesh.vertices, t.triangles).cwiseMax(0.0);
-    Laplacian laplacian(n, t.triangles);
-    const double shift = laplacian.assemble(weights, 1e-8);
-    const Eigen::SparseMatrix<double>& L = laplacian.matrix();
+    FlatSetUp set_up(mesh);
+    const int n = set_up.n;
+    const Triangulation& t = set_up.t;
+    const std::vector<int>& labels = set_up.labels;
+    const Eigen::SparseMatrix<double>& L = set_up.laplacian.matrix();
     ChartPlanes ordered(n, t.triangles, labels);
     ordered.order(L);
     ChartPlanes from_orderings(n, t.triangles, labels);
@@ -384,7 +401,7 @@ TEST(FlattenCharts, AtScaleTheChartsFactorsAndAnalysesAreKept) {
     ordered.factorize(L, 1);  // the largest system only, as beside the fitting (RobustRun)
     EXPECT_EQ(ordered.factorizations(), 1);
     const FlatCharts flat = flatten_charts(
-        mesh.vertices, mesh.vertices, t.triangles, labels, weights, L, shift, quality,
+        mesh.vertices, mesh.vertices, t.triangles, labels, set_up.weights, L, set_up.shift, set_up.quality,
         [](const Eigen::MatrixX3d& y) { return y; }, 1.0, 1, &ordered);
     EXPECT_EQ(flat.planes->factorizations(), 2);  // the third is ordered's
     ASSERT_EQ(flat.charts != nullptr, kept) << n;
@@ -411,22 +428,16 @@ TEST(FlattenCharts, GivesUpAHopelessAttemptAfterItsFirstSolve) {
   const std::string path = std::string(POLYCUBE_MESH_DATA) + "/armadillo.off";
   if (!std::ifstream(path).good()) GTEST_SKIP() << "armadillo.off is missing: run `make data`";
   const PolygonMesh mesh = read_mesh(path);
-  const int n = static_cast<int>(mesh.vertices.rows());
-  const Triangulation t = triangulate(mesh.vertices, mesh.faces);
-  const std::vector<int> labels = test_meshes::nearest_triangle_labels(mesh, t);
-  const QualityMeasure quality(mesh.vertices, t.triangles, labels);
-  const CotangentWeights weights = cotangent_weights(mesh.vertices, t.triangles).cwiseMax(0.0);
-  Laplacian laplacian(n, t.triangles);
-  const double shift = laplacian.assemble(weights, 1e-8);
+  FlatSetUp s(mesh);
   const auto flatten = [&](bool give_up_hopeless) {
     return flatten_charts(
-        mesh.vertices, mesh.vertices, t.triangles, labels, weights, laplacian.matrix(), shift, quality,
+        mesh.vertices, mesh.vertices, s.t.triangles, s.labels, s.weights, s.laplacian.matrix(), s.shift, s.quality,
         [](const Eigen::MatrixX3d& y) { return y; }, 1.0, kFlattenRounds, nullptr, give_up_hopeless);
   };
   const FlatCharts hopeless = flatten(true);
   EXPECT_FALSE(hopeless.found);
   EXPECT_EQ(hopeless.rounds, 1);
-  EXPECT_GT(hopeless.states.flipped_count, kHopelessFlippedShare * static_cast<double>(t.triangles.rows()));
+  EXPECT_GT(hopeless.states.flipped_count, kHopelessFlippedShare * static_cast<double>(s.t.triangles.rows()));
   // Without, the rounds go on (here, no bound on the collapsed area, to a
   // flat shape that collapses what it must).
   const FlatCharts tried = flatten(false);
