@@ -26,7 +26,8 @@ std::vector<int> relabel_collapsed_faces(const std::vector<std::vector<int>>& ne
       if (votes[best] > 0) moves.emplace_back(f, best);
     }
     int made = 0;
-    for (const auto& [face, label] : moves) {
+    for (const auto& move : moves) {
+      const int face = move.first, label = move.second;
       // Nor with a neighbour relabelled earlier in this sweep.
       const auto& around = neighbours[face];
       if (std::any_of(around.begin(), around.end(), [&](int g) { return labels[g] == (label ^ 1); })) continue;
