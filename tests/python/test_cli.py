@@ -306,6 +306,28 @@ def test_coarse_route_at_scale(program, tmp_path):
     assert run(program, "deform", refined, "--coarse-triangles", -1).returncode != 0
 
 
+def test_coarse_route_at_a_million_triangles_makes_no_further_run_within_the_margins(program, tmp_path):
+    # Fandisk refined 64 times (828,544 triangles), nearest labels: the fine
+    # run after the coarse route collapses 0.0012% of the area, within stage
+    # 8's margins (docs/design.md section 2.6), and at this size a further
+    # run costs seconds for hundredths of a percent: none is made. The only
+    # flattening the report lists after the route is the fine run's own.
+    fandisk = MESHES / "fandisk.off"
+    if not fandisk.exists():
+        pytest.skip("run `make data`")
+    refined = tmp_path / "fandisk-x64.ply"
+    command = ("refine", fandisk, "--levels", 3, "--scheme", "bilinear", "--output", refined)
+    assert run(program, *command).returncode == 0
+    result = run(program, "deform", refined, "--iterations", 50)
+    assert result.returncode == 0, result.stderr
+    report = json.loads(result.stdout)
+    assert report["triangles"] == 828544 and report["coarse_triangles"] > 0
+    assert report["converged"] and report["flipped_faces"] == 0
+    assert report["folded_edges"] <= report["input_folded_edges"]
+    assert report["collapsed_area"] < 0.0025 and report["collapsed_faces"] < 0.005 * report["triangles"]
+    assert len(report["flatten_attempts"]) == 1
+
+
 def test_coarse_route_takes_labels_that_flatten_only_in_the_last_resort(program, tmp_path):
     # Armadillo refined 4 times (208,000 triangles), nearest labels: they
     # flatten only with up to half the area collapsed (docs/design.md section
