@@ -306,21 +306,27 @@ def test_coarse_route_at_scale(program, tmp_path):
     assert run(program, "deform", refined, "--coarse-triangles", -1).returncode != 0
 
 
+def refined_report(program, tmp_path, model, levels):
+    """The report of `model` (a CGAL model) refined `levels` times with the
+    bilinear scheme, deformed with nearest labels and 50 iterations."""
+    path = MESHES / f"{model}.off"
+    if not path.exists():
+        pytest.skip("run `make data`")
+    refined = tmp_path / f"{model}-refined.ply"
+    command = ("refine", path, "--levels", levels, "--scheme", "bilinear", "--output", refined)
+    assert run(program, *command).returncode == 0
+    result = run(program, "deform", refined, "--iterations", 50)
+    assert result.returncode == 0, result.stderr
+    return json.loads(result.stdout)
+
+
 def test_coarse_route_at_a_million_triangles_makes_no_further_run_within_the_margins(program, tmp_path):
     # Fandisk refined 64 times (828,544 triangles), nearest labels: the fine
     # run after the coarse route collapses 0.0012% of the area, within stage
     # 8's margins (docs/design.md section 2.6), and at this size a further
     # run costs seconds for hundredths of a percent: none is made. The only
     # flattening the report lists after the route is the fine run's own.
-    fandisk = MESHES / "fandisk.off"
-    if not fandisk.exists():
-        pytest.skip("run `make data`")
-    refined = tmp_path / "fandisk-x64.ply"
-    command = ("refine", fandisk, "--levels", 3, "--scheme", "bilinear", "--output", refined)
-    assert run(program, *command).returncode == 0
-    result = run(program, "deform", refined, "--iterations", 50)
-    assert result.returncode == 0, result.stderr
-    report = json.loads(result.stdout)
+    report = refined_report(program, tmp_path, "fandisk", 3)
     assert report["triangles"] == 828544 and report["coarse_triangles"] > 0
     assert report["converged"] and report["flipped_faces"] == 0
     assert report["folded_edges"] <= report["input_folded_edges"]
@@ -338,15 +344,7 @@ def test_coarse_route_takes_labels_that_flatten_only_in_the_last_resort(program,
     # input, 0.051% of the area collapsed (16.7% deformed itself; 17.1%
     # while relabelled faces could land back to back with opposite labels
     # and every further run was refused).
-    armadillo = MESHES / "armadillo.off"
-    if not armadillo.exists():
-        pytest.skip("run `make data`")
-    refined = tmp_path / "armadillo-x4.ply"
-    command = ("refine", armadillo, "--levels", 1, "--scheme", "bilinear", "--output", refined)
-    assert run(program, *command).returncode == 0
-    result = run(program, "deform", refined, "--iterations", 50)
-    assert result.returncode == 0, result.stderr
-    report = json.loads(result.stdout)
+    report = refined_report(program, tmp_path, "armadillo", 1)
     assert report["triangles"] == 208000
     assert 0 < report["coarse_triangles"] <= 50000 and report["last_resort"]
     assert report["converged"] and report["normal_deviation_max_deg"] < 0.5
