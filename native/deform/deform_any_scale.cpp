@@ -64,7 +64,7 @@ bool within_margins(const Figures& figures, long triangles) {
 // margins, whatever it would gain: the coarse run's own further runs did
 // the relabelling at 50,000 triangles, and at full resolution each costs 3
 // to 6 s for hundredths of a percent of the area (armadillo refined 16
-// times: six runs, 0.074% -> 0.0011%, 18 of its 63 s; bunny00 refined 16
+// times: six runs, 0.074% -> 0.0011%, 15 of its 59 s; bunny00 refined 16
 // times: three, 0.022% -> 0.0024%, 13 of 62 s). Below it a further run
 // costs about a second, and they go on as above (armadillo refined 4 times:
 // 0.134% -> 0.051% for 1 s of its 32).
