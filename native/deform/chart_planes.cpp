@@ -226,26 +226,33 @@ SparseCholesky::Ordering joined_ordering(const SparseCholesky::Ordering& ordered
 
 }  // namespace
 
-void ChartPlanes::order(const Eigen::SparseMatrix<double>& laplacian) {
-  const int n = static_cast<int>(laplacian.rows());
-  std::vector<int> of_root, axes;
-  std::array<int, 3> unknowns{};
-  std::array<std::vector<int>, 3> unknown;
+ChartPlanes::NumberedAxes ChartPlanes::numbered_axes(int n, const std::array<bool, 3>& wanted) const {
+  NumberedAxes numbered;
+  std::vector<int> of_root;
   for (int axis = 0; axis < 3; ++axis) {
-    if (chart_orderings_[axis] || !charts_only_[axis]) continue;
+    if (!wanted[axis]) continue;
     // Serial: finding roots compresses paths.
-    unknowns[axis] = number_unknowns(axis, n, of_root, unknown[axis]);
-    axes.push_back(axis);
+    numbered.unknowns[axis] = number_unknowns(axis, n, of_root, numbered.unknown[axis]);
+    numbered.axes.push_back(axis);
   }
-  // As in factorize(): the largest first, the other two after it on a
-  // second thread when one is free (inside another task, one after the other).
-  std::stable_sort(axes.begin(), axes.end(), [&](int a, int b) { return unknowns[a] > unknowns[b]; });
+  const auto& unknowns = numbered.unknowns;
+  std::stable_sort(numbered.axes.begin(), numbered.axes.end(),
+                   [&](int a, int b) { return unknowns[a] > unknowns[b]; });
+  return numbered;
+}
+
+void ChartPlanes::order(const Eigen::SparseMatrix<double>& laplacian) {
+  std::array<bool, 3> wanted{};
+  for (int axis = 0; axis < 3; ++axis) wanted[axis] = !chart_orderings_[axis] && charts_only_[axis];
+  // Inside another task, one after the other.
+  NumberedAxes numbered = numbered_axes(static_cast<int>(laplacian.rows()), wanted);
+  const std::vector<int>& axes = numbered.axes;
   run_tasks(static_cast<int>(axes.size()), [&](int i) {
     const int axis = axes[i];
     SparseCholesky analysis;
-    analysis.analyze(reduced_matrix(laplacian, unknown[axis], unknowns[axis]));
+    analysis.analyze(reduced_matrix(laplacian, numbered.unknown[axis], numbered.unknowns[axis]));
     chart_orderings_[axis] = std::make_shared<const ChartOrdering>(
-        ChartOrdering{analysis.ordering(), std::move(unknown[axis]), analysis.copy_analysis()});
+        ChartOrdering{analysis.ordering(), std::move(numbered.unknown[axis]), analysis.copy_analysis()});
   });
 }
 
@@ -257,24 +264,14 @@ void ChartPlanes::use_orderings(const ChartPlanes& ordered) {
 void ChartPlanes::factorize(const Eigen::SparseMatrix<double>& laplacian) { factorize(laplacian, 3); }
 
 void ChartPlanes::factorize(const Eigen::SparseMatrix<double>& laplacian, int at_most, bool merge) {
-  const int n = static_cast<int>(laplacian.rows());
-  std::vector<int> of_root, axes;
-  std::array<int, 3> unknowns{};
-  std::array<std::vector<int>, 3> unknown;
-  for (int axis = 0; axis < 3; ++axis) {
-    if (!changed_[axis]) continue;
-    // One unknown per union-find set (serial: finding roots compresses paths).
-    unknowns[axis] = number_unknowns(axis, n, of_root, unknown[axis]);
-    axes.push_back(axis);
-  }
-  // The axes' systems are independent: each analysed and factorised on a
-  // thread of its own, the largest first (on two cores the other two follow
-  // it on the second).
-  std::stable_sort(axes.begin(), axes.end(), [&](int a, int b) { return unknowns[a] > unknowns[b]; });
+  // The axes' systems are independent: one a thread (numbered_axes).
+  NumberedAxes numbered = numbered_axes(static_cast<int>(laplacian.rows()), changed_);
+  std::vector<int>& axes = numbered.axes;
+  const std::array<int, 3>& unknowns = numbered.unknowns;
   if (static_cast<int>(axes.size()) > at_most) axes.resize(at_most);
   for (int axis : axes) {
     changed_[axis] = false;
-    unknown_[axis] = std::move(unknown[axis]);
+    unknown_[axis] = std::move(numbered.unknown[axis]);
     cholesky_[axis].reset();  // before the new factor: never two of one axis in memory
     merged_[axis].reset();
   }

@@ -122,6 +122,15 @@ class ChartPlanes {
   // of their first vertex, so equal partitions give equal unknowns. Returns
   // how many there are.
   int number_unknowns(int axis, int n, std::vector<int>& of_root, std::vector<int>& unknown) const;
+  // The axes `wanted` picks, each numbered (number_unknowns), the largest
+  // system first: analysed and factorised one a thread, on two cores the
+  // other two follow it on the second.
+  struct NumberedAxes {
+    std::vector<int> axes;
+    std::array<int, 3> unknowns{};
+    std::array<std::vector<int>, 3> unknown;
+  };
+  NumberedAxes numbered_axes(int n, const std::array<bool, 3>& wanted) const;
   // The K solves of solve(), one back-substitution per axis for all of them.
   template <int K>
   std::array<Vertices, K> solve_together(const std::array<const Eigen::MatrixX3d*, K>& rhs,

@@ -33,4 +33,8 @@ namespace polycube {
 std::vector<int> keep_opposites_apart(const PolygonMesh& mesh, const std::vector<std::vector<int>>& neighbours,
                                       const std::vector<int>& given, std::vector<int>& labels);
 
+// Whether a neighbour of face `f` has the label opposite `label` (0..5).
+bool touches_opposite(const std::vector<std::vector<int>>& neighbours, const std::vector<int>& labels, int f,
+                      int label);
+
 }  // namespace polycube

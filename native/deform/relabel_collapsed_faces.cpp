@@ -4,6 +4,8 @@
 #include <array>
 #include <utility>
 
+#include "deform/keep_opposites_apart.h"
+
 namespace polycube {
 
 std::vector<int> relabel_collapsed_faces(const std::vector<std::vector<int>>& neighbours,
@@ -29,8 +31,7 @@ std::vector<int> relabel_collapsed_faces(const std::vector<std::vector<int>>& ne
     for (const auto& move : moves) {
       const int face = move.first, label = move.second;
       // Nor with a neighbour relabelled earlier in this sweep.
-      const auto& around = neighbours[face];
-      if (std::any_of(around.begin(), around.end(), [&](int g) { return labels[g] == (label ^ 1); })) continue;
+      if (touches_opposite(neighbours, labels, face, label)) continue;
       labels[face] = label;
       waiting[face] = 0;
       changed.push_back(face);
