@@ -9,7 +9,7 @@
 #include "deform/keep_opposites_apart.h"
 #include "deform/untangle_flat_charts.h"
 #include "labels/axis.h"
-#include "labels/nearest_labels.h"
+#include "labels/validate_labels.h"
 #include "mesh/decimate_charts.h"
 #include "mesh/mesh_adjacency.h"
 #include "mesh/triangulate.h"
@@ -117,10 +117,7 @@ bool coarse_to_fine(const PolygonMesh& mesh, const std::vector<int>& labels, con
   Stopwatch clock;
   const Triangulation triangulation = triangulate(mesh.vertices, mesh.faces);
   const Eigen::Index fine_triangles = triangulation.triangles.rows();
-  std::vector<int> fine = labels;
-  const std::vector<int> nearest = nearest_labels(mesh);
-  for (size_t f = 0; f < fine.size(); ++f)
-    if (fine[f] == kUnlabelled) fine[f] = nearest[f];
+  std::vector<int> fine = filled_labels(mesh, labels);
   const std::vector<int> given = fine;
   Decimation decimation = decimate_along(mesh.vertices, triangulation, fine, options.coarse_triangles);
   const bool coarse_enough =
@@ -129,6 +126,9 @@ bool coarse_to_fine(const PolygonMesh& mesh, const std::vector<int>& labels, con
 
   DeformOptions coarse_options = options;
   coarse_options.coarse_triangles = 0;
+  // Its stage 8 looks for labels the fine run flattens: a further run after
+  // one whose rounds were refused goes to the untangling at once.
+  coarse_options.retry_refused_rounds = false;
   DeformResult spent_coarse;  // the cost of the runs made: the handed-over one, the coarse one
   add_cost(spent_coarse, handed_over);
   int offset = handed_over.iterations;  // their iterations

@@ -110,6 +110,15 @@ struct DeformOptions {
   // there and carried back (coarse_to_fine.h, docs/design.md section 2.8);
   // 0 deforms every mesh at its own resolution.
   int coarse_triangles = 50'000;
+  // Robust variant: a flattening attempt whose first flat solve turns
+  // triangles over untangles that solve at once (untangle_flat_charts.h),
+  // without the rounds that collapse them first (flatten_charts.h).
+  bool untangle_first_solve = false;
+  // Robust variant, stage 8: false sets untangle_first_solve for every
+  // further run after a kept run whose rounds were refused (a run after the
+  // first, kept by untangling its first solve): the coarse route's coarse
+  // run (docs/design.md section 2.8).
+  bool retry_refused_rounds = true;
   // Polled after every iteration, of the first run (as its callback is) and
   // of those further runs, which the callback does not see, and inside the
   // stages whose steps take minutes at a million triangles (every round and

@@ -21,8 +21,8 @@
 #include "labels/axis.h"
 #include "labels/keep_valid_moves.h"
 #include "labels/label_energy.h"
-#include "labels/nearest_labels.h"
 #include "labels/repair_charts.h"
+#include "labels/validate_labels.h"
 #include "labels/violation_score.h"
 #include "mesh/check_input.h"
 #include "mesh/mesh_adjacency.h"
@@ -126,6 +126,17 @@ struct RerunMesh {
   NearStart near_start;
 };
 
+// Whether `result` comes from a run after the first (a further run or the
+// last resort) kept only by untangling its first flat solve, its rounds
+// refused (flatten_stage.h).
+bool rounds_refused(const DeformResult& result) {
+  if (result.second_run_iterations == 0) return false;
+  const auto& attempts = result.flatten_attempts;
+  const auto kept = std::find_if(attempts.rbegin(), attempts.rend(),
+                                 [](const DeformResult::FlattenAttempt& a) { return a.kept; });
+  return kept != attempts.rend() && kept->rounds > 0 && kept->untangle_rounds > 0;
+}
+
 // A run the caller does not see (its iterations start again from the
 // input, and a caller that keeps every iteration, as shape keys, would get a
 // run it may not keep); only `stop_requested` (polled by the run itself)
@@ -144,10 +155,7 @@ DeformResult silent_run(const PolygonMesh& mesh, const std::vector<int>& labels,
 // faces taking their nearest axis.
 Figures given_labels_figures(const PolygonMesh& mesh, const Triangulation& triangulation,
                              const std::vector<int>& labels, const Vertices& positions) {
-  std::vector<int> given = labels;
-  const std::vector<int> nearest = nearest_labels(mesh);
-  for (size_t f = 0; f < given.size(); ++f)
-    if (given[f] == kUnlabelled) given[f] = nearest[f];
+  const std::vector<int> given = filled_labels(mesh, labels);
   std::vector<int> triangle_labels(triangulation.face_of_triangle.size());
   for (size_t t = 0; t < triangle_labels.size(); ++t) triangle_labels[t] = given[triangulation.face_of_triangle[t]];
   return QualityMeasure(mesh.vertices, triangulation.triangles, triangle_labels).measure(positions);
@@ -231,8 +239,10 @@ bool keep_if_better(const PolygonMesh& mesh, const RerunMesh& shared, const std:
   // first solve again (fandisk refined 64 times: 30 of each further run's
   // 42 s).
   const bool near = options.rerun_from_result && shared.triangulation.triangles.rows() >= kUntangleNewtonFrom;
+  DeformOptions run_options = options;
+  if (!options.retry_refused_rounds && rounds_refused(result)) run_options.untangle_first_solve = true;
   DeformResult again =
-      silent_run(mesh, moved, options, again_finished, near ? result.positions : Vertices(), shared.near_start);
+      silent_run(mesh, moved, run_options, again_finished, near ? result.positions : Vertices(), shared.near_start);
   const bool worse_errors = (budget.runs_left >= 0 || budget.bounded) &&
                             (again.figures.edge_error > kStalledErrorSlack * result.figures.edge_error ||
                              again.figures.area_error > kStalledErrorSlack * result.figures.area_error ||
@@ -469,8 +479,18 @@ DeformResult deform(const PolygonMesh& input, const std::vector<int>& labels, co
   long triangles = 0;
   for (int f = 0; f < mesh.faces.count(); ++f) triangles += std::max(mesh.faces.size(f) - 2, 0);
   const bool route = coarse_route_applies(unit_options, triangles);
-  DeformResult result = deform_in_unit_box(mesh, labels, unit_options, unit_callback, finished, Vertices(),
-                                           NearStart(), route);
+  // The mesh's own run goes as far as its first flattening attempt to show
+  // whether the labels flatten without help (coarse_to_fine.h). Labels that
+  // break the polycube conditions (violation_score.h) never did at the
+  // route's scale, and that attempt is a sixth of the whole run (bunny00
+  // refined 16 times, nearest labels: 7.6 of 49 s): they go to the route
+  // at once (docs/design.md section 2.8).
+  DeformResult result;
+  if (route && violation_score(mesh_adjacency(mesh.faces, static_cast<int>(mesh.vertices.rows())),
+                               filled_labels(mesh, labels)) > 0)
+    result.handed_over = true;
+  else
+    result = deform_in_unit_box(mesh, labels, unit_options, unit_callback, finished, Vertices(), NearStart(), route);
   bool coarse = false;
   if (result.handed_over) {
     const DeformResult handed_over = std::move(result);

@@ -35,7 +35,8 @@ void flatten_stage(RobustRun& run, int iteration) {
   const Placement place = [&d](const Eigen::MatrixX3d& solution) { return d.place(solution); };
   FlatCharts flat = flatten_charts(d.mesh.vertices, d.x, d.triangles(), d.triangle_labels, d.weights,
                                    d.laplacian.matrix(), d.shift, d.quality, place, d.options.max_collapsed_share,
-                                   kFlattenRounds, run.ordered.get(), d.hand_over_unflat);
+                                   d.options.untangle_first_solve ? 1 : kFlattenRounds, run.ordered.get(),
+                                   d.hand_over_unflat);
   if (run.ordered) result.factorizations += run.ordered->factorizations();
   run.ordered.reset();  // its orderings (and factor) are the attempt's planes' now
   run.chart_factors = std::move(flat.charts);

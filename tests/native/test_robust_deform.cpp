@@ -269,6 +269,36 @@ TEST(Robust, FurtherRunsOpenTheNearestLabelsOfOrganicModels) {
   }
 }
 
+// Without retrying refused rounds (the coarse route's coarse run), the
+// further runs after a kept run whose rounds were refused go to the
+// untangling at once, a single flat solve each. Triceratops, nearest labels:
+// every such run's rounds were refused anyway, so the result is the same
+// bit for bit; with the default, those runs try their rounds.
+TEST(Robust, FurtherRunsAfterRefusedRoundsCanGoStraightToTheUntangling) {
+  const Model model = load("triceratops");
+  if (model.mesh.faces.count() == 0) GTEST_SKIP() << "triceratops is missing: run `make data`";
+  DeformOptions o = options(Variant::kRobust, 50);
+  const DeformResult retried = deform(model.mesh, model.labels, o);
+  o.retry_refused_rounds = false;
+  const DeformResult straight = deform(model.mesh, model.labels, o);
+  ASSERT_TRUE(retried.converged);
+  EXPECT_TRUE(straight.positions == retried.positions);
+  EXPECT_EQ(straight.labels, retried.labels);
+  // The same attempts, but those after the refusal: one round each
+  // without retrying, more with, then untangled.
+  ASSERT_EQ(straight.flatten_attempts.size(), retried.flatten_attempts.size());
+  int single = 0;
+  for (size_t i = 0; i < straight.flatten_attempts.size(); ++i) {
+    const DeformResult::FlattenAttempt &s = straight.flatten_attempts[i], &t = retried.flatten_attempts[i];
+    if (s.rounds == t.rounds) continue;
+    EXPECT_EQ(s.rounds, 1);
+    EXPECT_GT(t.rounds, 1);
+    EXPECT_GT(s.untangle_rounds, 0);
+    ++single;
+  }
+  EXPECT_GE(single, 3);
+}
+
 // The local step: input normal onto the axis, then the twist that fits the
 // current triangle best.
 TEST(Robust, FittedRotationTurnsTheInputNormalOntoTheAxisWithTheBestTwist) {
