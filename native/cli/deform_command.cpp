@@ -92,6 +92,7 @@ int deform_command(const std::vector<std::string>& args) {
   options.relabel_collapsed = !keep_collapsed;
   options.last_resort = !first_run_only;
   options.polish = !unpolished;
+  if (app.count("--output")) check_mesh_path(output);
 
   const PolygonMesh mesh = read_mesh(input);
   if (app.count("--start")) {

@@ -36,6 +36,7 @@ int label_command(const std::vector<std::string>& args) {
       ->type_name("SHAPE");
   if (!parse_arguments(app, args)) return 0;
   const AutoLabelOptions options = auto_label_options(source);
+  if (app.count("--straightened")) check_mesh_path(straightened_path);
   const PolygonMesh mesh = read_mesh(input);
   Vertices straightened;
   const std::vector<int> labels = auto_labels(mesh, options, &straightened);

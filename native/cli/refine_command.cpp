@@ -34,6 +34,7 @@ int refine_command(const std::vector<std::string>& args) {
   add_plain_labels_option(app, plain);
   if (!parse_arguments(app, args)) return 0;
   const RefineScheme refine_scheme = parse_refine_scheme(scheme);
+  check_mesh_path(output);
   const PolygonMesh mesh = read_mesh(input);
   const std::vector<int> labels =
       app.count("--labels") ? read_labels(labels_path, mesh.faces.count()) : std::vector<int>{};

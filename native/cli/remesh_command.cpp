@@ -29,6 +29,7 @@ int remesh_command(const std::vector<std::string>& args) {
       ->check(whole_number_at_least(0));
   app.add_option("--output", output, "the quad mesh, .obj, .off or .ply")->required()->type_name("OUT");
   if (!parse_arguments(app, args)) return 0;
+  check_mesh_path(output);
   const UseInput input = read_use_input(paths);
   const QuadRemesh remesh = quad_remesh(input.mesh, input.polycube, input.labels, options);
   OutputFiles outputs;  // in place only once the figures reached stdout too

@@ -126,14 +126,22 @@ void write_ply(ByteSink& out, const Vertices& v, const PolygonFaces& f) {
   }
 }
 
-}  // namespace
-
-FileWriter mesh_file_writer(const std::string& path, const Vertices& v, const PolygonFaces& f) {
+// The lower-case extension of a path write_mesh writes, else Error.
+std::string mesh_extension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   if (ext != ".obj" && ext != ".off" && ext != ".ply")
     fail(path, ext.empty() ? "no file extension, expected .obj, .off or .ply"
                            : "unknown mesh format '" + ext + "', expected .obj, .off or .ply");
+  return ext;
+}
+
+}  // namespace
+
+void check_mesh_path(const std::string& path) { mesh_extension(path); }
+
+FileWriter mesh_file_writer(const std::string& path, const Vertices& v, const PolygonFaces& f) {
+  const std::string ext = mesh_extension(path);
   check_mesh(path, v, f);
   if (ext == ".obj") return [&v, &f](ByteSink& out) { write_obj(out, v, f); };
   if (ext == ".off") return [&v, &f](ByteSink& out) { write_off(out, v, f); };

@@ -26,6 +26,11 @@ void write_obj_with_uvs(const std::string& path, const Vertices& v, const Polygo
 FileWriter obj_with_uvs_writer(const std::string& path, const Vertices& v, const PolygonFaces& f,
                                const CornerUvs& uvs);
 
+// Throws write_mesh's Error when `path` names no format it writes (.obj,
+// .off, .ply): the commands check their outputs before the work, which
+// can take minutes, rather than after.
+void check_mesh_path(const std::string& path);
+
 // What write_mesh writes, for OutputFiles::stage when a command writes
 // several files all or none: checks path and mesh now (the same errors, the
 // write aside), writes when called, in chunks. v and f must outlive it.

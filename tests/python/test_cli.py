@@ -152,6 +152,24 @@ def test_bad_files_and_arguments_fail_cleanly(program, sphere_off, tmp_path, mak
         ["sphere.off", "mesh.stl", "bad.off", "nan.off", "wrong_count.txt", "junk.txt"])
 
 
+@pytest.mark.parametrize("make_args", [
+    lambda d: ["deform", d / "missing.off", "--output", d / "out"],
+    lambda d: ["label", d / "missing.off", "--output", d / "labels.txt", "--straightened", d / "out.xyz"],
+    lambda d: ["refine", d / "missing.off", "--levels", 1, "--output", d / "out.stl"],
+    lambda d: ["remesh", d / "missing.off", d / "missing.ply", "--edge-length", 1, "--output", d / "out.xyz"],
+])
+def test_an_output_in_no_mesh_format_fails_before_the_work(program, tmp_path, make_args):
+    # The output's format is checked before the work, which takes minutes at
+    # a million triangles, rather than once it is done: the input is not
+    # even read (it does not exist), and the message is the output's.
+    result = run(program, *make_args(tmp_path))
+    assert result.returncode != 0
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1 and "expected .obj, .off or .ply" in lines[0], result.stderr
+    assert "missing" not in lines[0]
+    assert list(tmp_path.iterdir()) == []
+
+
 def test_unwritable_output_leaves_nothing(program, sphere_off, tmp_path):
     result = run(program, "deform", sphere_off, "--iterations", 2, "--output", tmp_path / "no" / "dir" / "x.obj")
     assert result.returncode != 0 and "x.obj" in result.stderr
