@@ -225,6 +225,16 @@ TEST(UntangleFlatCharts, AFewSliversAreOpenedLocallyAndTheRestOfTheMapKept) {
   EXPECT_GT(far, 900);  // of 1,026
 }
 
+// The block with the vertices of its top (at height `top`) that `pick`
+// chooses by their x and y moved by `dx` along x; `moved` counts them.
+Vertices top_moved(const Block& b, double top, const std::function<bool(double, double)>& pick, double dx,
+                   int& moved) {
+  Vertices x = b.vertices;
+  for (Eigen::Index v = 0; v < x.rows(); ++v)
+    if (x(v, 2) == top && pick(x(v, 0), x(v, 1))) x(v, 0) += dx, ++moved;
+  return x;
+}
+
 TEST(UntangleFlatCharts, ManySliversAtScaleAreOpenedLocallyToo) {
   // The block of the test above with fifteen vertices of its top moved
   // onto their neighbours: thirty triangles collapse, more than the few
@@ -234,13 +244,10 @@ TEST(UntangleFlatCharts, ManySliversAtScaleAreOpenedLocallyToo) {
   // put it bit for bit (a global round, as the rounds were until the
   // triangles without room were few, moves the whole map).
   const Block b = block(16, 16, 8);
-  Vertices crushed = b.vertices;
   int moved = 0;
-  for (Eigen::Index v = 0; v < crushed.rows(); ++v) {
-    const double x = crushed(v, 0), y = crushed(v, 1);
-    if (crushed(v, 2) == 8.0 && (x == 2.0 || x == 6.0 || x == 10.0) && std::fmod(y, 3.0) == 2.0)
-      crushed(v, 0) = x + 1.0, ++moved;
-  }
+  const Vertices crushed = top_moved(
+      b, 8.0, [](double x, double y) { return (x == 2.0 || x == 6.0 || x == 10.0) && std::fmod(y, 3.0) == 2.0; }, 1.0,
+      moved);
   ASSERT_EQ(moved, 15);
   const QualityMeasure quality(b.vertices, b.triangles, b.labels);
   ASSERT_GT(quality.measure(crushed).collapsed_faces, 20);
@@ -319,6 +326,34 @@ TEST(UntangleFlatCharts, LocalOnlyOpensTurnedOverTrianglesWithoutAGlobalRound) {
     if (std::abs(b.vertices(v, 0) - 8.0) + std::abs(b.vertices(v, 1) - 8.0) > 8.0)
       far_moved = std::max(far_moved, (u.positions.row(v) - crushed.row(v)).norm());
   EXPECT_LT(far_moved, 1e-12);
+}
+
+TEST(UntangleFlatCharts, ALargeLocalRoundStartsWithLbfgsAndNewtonFinishes) {
+  // A 230 x 230 x 1 block whose top (105,800 triangles) has every fourth
+  // vertex of every fourth row moved past its neighbour: the triangles
+  // around each turn over, as where the coarse route's polycube is carried
+  // to the fine mesh, and the first local round holds the whole top.
+  // Newton's first steps there are cut short by the line search, a
+  // factorisation each; L-BFGS's iterations first leave Newton a few.
+  const Block b = block(230, 230, 1);
+  int moved = 0;
+  const Vertices crushed = top_moved(
+      b, 1.0, [](double x, double y) { return std::fmod(x, 4.0) == 2.0 && std::fmod(y, 4.0) == 2.0; }, 1.5, moved);
+  ASSERT_EQ(moved, 58 * 58);
+  const QualityMeasure quality(b.vertices, b.triangles, b.labels);
+  ASSERT_GT(quality.measure(crushed).flipped_faces, moved);
+  const UntangledCharts u =
+      untangle_flat_charts(b.vertices, crushed, b.triangles, b.labels, kUntangleRounds, kUntangleLocalShare, {},
+                           UntangleMinimiser::newton, {}, {}, UntangleStart::local_only);
+  EXPECT_TRUE(u.untangled);
+  EXPECT_EQ(u.rounds, u.local_rounds);
+  EXPECT_TRUE(flat(u.positions, b));
+  const Figures after = quality.measure(u.positions);
+  EXPECT_EQ(after.flipped_faces, 0);
+  EXPECT_EQ(after.collapsed_faces, 0);
+  // Newton alone: 7 factorisations of the round's 105,800 triangles (4.2
+  // s); after L-BFGS's 82 iterations, one (1.7 s).
+  EXPECT_LE(u.factorizations, 3);
 }
 
 TEST(UntangleFlatCharts, StopsOnceTheCollapsesPassTheCallersBound) {
