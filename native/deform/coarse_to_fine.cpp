@@ -129,6 +129,7 @@ bool coarse_to_fine(const PolygonMesh& mesh, const std::vector<int>& labels, con
   // Its stage 8 looks for labels the fine run flattens: a further run after
   // one whose rounds were refused goes to the untangling at once.
   coarse_options.retry_refused_rounds = false;
+  coarse_options.untangle_again_above = kCoarseUntangleAgainAbove;
   DeformResult spent_coarse;  // the cost of the runs made: the handed-over one, the coarse one
   add_cost(spent_coarse, handed_over);
   int offset = handed_over.iterations;  // their iterations

@@ -55,7 +55,8 @@ bool untangle_collapsed(RobustRun& run, int iteration, bool found) {
   DeformResult& result = d.result;
   if ((found && !run.relaxed) || run.untangle_tried) return found;
   const int collapsed = count(run.state.collapsed);
-  if (collapsed == 0 || (result.untangled && d.quality.collapsed_area_fraction(run.state) <= kUntangleAgainAbove))
+  if (collapsed == 0 ||
+      (result.untangled && d.quality.collapsed_area_fraction(run.state) <= d.options.untangle_again_above))
     return found;
   run.untangle_tried = true;
   CollapseBound bound;

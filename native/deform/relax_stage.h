@@ -21,12 +21,8 @@ namespace polycube {
 struct RobustRun;
 
 // A result untangled when flattening is untangled once more from where the
-// relaxation left it when more than this share of the area is still
-// collapsed: the second pass starts from a better shape and reopens
-// triangles the first put on a line (turbine: 2.2% to 0.5%), at the cost of
-// the first pass again (bunny00: 0.32% either way, twice the time).
-constexpr double kUntangleAgainAbove = 0.005;
-
+// relaxation left it when more than DeformOptions::untangle_again_above of
+// the area is still collapsed.
 bool relax_stage(RobustRun& run, int iteration);
 
 }  // namespace polycube
