@@ -447,7 +447,8 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
     Eigen::VectorXd z(order.size());
     for (size_t i = 0; i < order.size(); ++i) z[i] = y[order[i]];
     NewtonMinimizer newton;
-    if (newton_rounds && static_cast<long>(local.size()) >= kLbfgsFirstFrom) minimize_over(local, z, free_count, newton, true);
+    if (newton_rounds && static_cast<long>(local.size()) >= kLbfgsFirstFrom)
+      minimize_over(local, z, free_count, newton, true);
     minimize_over(local, z, free_count, newton);
     for (int i = 0; i < free_count; ++i) y[order[i]] = z[i];
   };
