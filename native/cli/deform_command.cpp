@@ -79,7 +79,8 @@ int deform_command(const std::vector<std::string>& args) {
   bool first_run_only = false;
   app.add_flag("--no-last-resort", first_run_only,
                "robust: return the best state of a run that does not become an exact polycube; by default\n"
-               "it is run once more, flattening accepted up to half the area collapsed (last_resort says so)");
+               "it is run once more, flattening accepted up to half the area collapsed (last_resort says so),\n"
+               "then once more with faces of opposite labels that meet back to back relabelled (relabelled_faces)");
   bool unpolished = false;
   app.add_flag("--no-polish", unpolished,
                "robust: return an exact result as the run left it; by default its edge and area errors are\n"

@@ -98,7 +98,9 @@ struct DeformOptions {
   // area is refused (the continuous stage goes on instead).
   double max_collapsed_share = 0.12;
   // Robust variant: a run that ends without an exact polycube is run once
-  // more with that share raised to one half, and kept when it is exact
+  // more with that share raised to one half, and kept when it is exact;
+  // still not exact, once more with faces of opposite labels parted where
+  // they meet across an edge the input does not fold (keep_opposites_apart.h)
   // (docs/design.md section 2.6, stage 9); false keeps the first run.
   bool last_resort = true;
   // Robust variant: an exact result's edge and area errors are lowered last

@@ -12,6 +12,7 @@
 #include "deform/deform.h"
 #include "deform/deformation.h"
 #include "deform/finished_run.h"
+#include "deform/keep_opposites_apart.h"
 #include "deform/polish_stage.h"
 #include "deform/quality.h"
 #include "deform/recut_collapsed_faces.h"
@@ -541,6 +542,32 @@ DeformResult deform(const PolygonMesh& input, const std::vector<int>& labels, co
       unit_options = last_resort;  // the further runs below flatten the same way
     } else {
       add_cost(result, again);
+    }
+  }
+  // Still no exact polycube: where the labels put opposite labels back to
+  // back across an edge the input does not fold, every exact polycube folds
+  // it or collapses a face there, and the untangled attempts fold it
+  // (keep_opposites_apart.h). One more run with those faces parted; models
+  // whose run is exact are not touched (docs/design.md section 2.6, stage 9).
+  if (robust && !coarse && options.last_resort && !result.converged && !result.stopped &&
+      !(options.stop_requested && options.stop_requested())) {
+    if (!shared) shared = std::make_unique<RerunMesh>(mesh);
+    std::vector<int> parted = filled_labels(mesh, labels);
+    const std::vector<int> changed = part_opposite_neighbours(mesh, shared->adjacency, shared->neighbours, parted);
+    if (!changed.empty()) {
+      finished.reset();
+      std::unique_ptr<FinishedRun> again_finished;
+      DeformResult again = silent_run(mesh, parted, unit_options, again_finished);
+      if (again.converged) {
+        finished = std::move(again_finished);
+        std::vector<int>& relabelled = again.relabelled_faces;
+        relabelled.insert(relabelled.end(), changed.begin(), changed.end());
+        std::sort(relabelled.begin(), relabelled.end());
+        relabelled.erase(std::unique(relabelled.begin(), relabelled.end()), relabelled.end());
+        keep_as_next_iteration(mesh, shared->triangulation, labels, unit_callback, std::move(again), result);
+      } else {
+        add_cost(result, again);
+      }
     }
   }
   // After the coarse route (coarse_to_fine.h) the further runs start from

@@ -27,11 +27,27 @@
 #include <vector>
 
 #include "mesh/mesh.h"
+#include "mesh/mesh_adjacency.h"
 
 namespace polycube {
 
 std::vector<int> keep_opposites_apart(const PolygonMesh& mesh, const std::vector<std::vector<int>>& neighbours,
                                       const std::vector<int>& given, std::vector<int>& labels);
+
+// The labels' own pairs: faces of opposite labels across an edge the input
+// does not fold (normals at most 120 degrees apart, docs/design.md section
+// 4), where any exact polycube folds the edge or collapses one of the two.
+// Nearest labels make them on thin ridges (the camel: 9, refined 4 times:
+// 18), and at a finer resolution the flattening no longer collapses them
+// away: every untangled attempt folded 12 to 18 edges where the input has 4,
+// and no run was exact (docs/design.md section 2.6, stage 9).
+// Of each pair, the face whose normal is farther from its label's axis
+// takes the label nearest its normal among those opposite none of its
+// neighbours' (if there is none, it stays). Each change removes a pair and
+// makes none, so this ends. `neighbours`: face_neighbours of `adjacency`.
+// Returns the faces changed, ascending.
+std::vector<int> part_opposite_neighbours(const PolygonMesh& mesh, const MeshAdjacency& adjacency,
+                                          const std::vector<std::vector<int>>& neighbours, std::vector<int>& labels);
 
 // Whether a neighbour of face `f` has the label opposite `label` (0..5).
 bool touches_opposite(const std::vector<std::vector<int>>& neighbours, const std::vector<int>& labels, int f,

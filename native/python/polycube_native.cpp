@@ -435,7 +435,8 @@ of the input, its charts moved past the relabelled faces and untangled around th
 faster, about as much collapsed, edge and area errors up to a sixth higher (stage 8).
 last_resort (robust): a run that does not become an exact polycube is run once more, silently,
 its flattening accepted up to half the area collapsed (stage 9; the report's last_resort says
-when that run was kept); False returns the first run's best state.
+when that run was kept), then once more with faces of opposite labels that meet back to back
+relabelled (relabelled_faces lists them); False returns the first run's best state.
 polish (robust): an exact result's edge and area errors are lowered last, its charts kept flat and
 nothing turned over or newly collapsed (docs/design.md section 2.6, "Polish"; the report's
 polish_steps counts the steps kept, and the callback sees the result once more, as the last

@@ -19,6 +19,7 @@
 #include "labels/nearest_labels.h"
 #include "labels/orientation.h"
 #include "labels/validate_labels.h"
+#include "mesh/mesh_adjacency.h"
 #include "mesh/triangulate.h"
 #include "test_meshes.h"
 
@@ -495,6 +496,41 @@ TEST(KeepOppositesApart, UndoesOnlyChangedFacesBackToBack) {
   // Nothing changed, nothing undone, even where labels are back to back.
   labels = {0, 1, 2, 2, 1};
   EXPECT_TRUE(keep_opposites_apart(strip, chain, labels, labels).empty());
+}
+
+// A gable roof whose two sides take +X and -X (nearest labels): back to
+// back across the ridge, which the input bends by less than 120 degrees. The
+// side farther from its axis takes the nearest label opposite no
+// neighbour's; a ridge the input folds keeps its pair.
+TEST(PartOppositeNeighbours, MovesTheSideFartherFromItsAxis) {
+  const auto roof = [](double height, double left_eave) {
+    PolygonMesh mesh;
+    mesh.vertices.resize(6, 3);
+    mesh.vertices << 0, 0, height, 1, 0, 0, 1, 1, 0, 0, 1, height, left_eave, 0, 0, left_eave, 1, 0;
+    mesh.faces.add({0, 1, 2, 3});  // normal (height, 0, 1): +X
+    mesh.faces.add({0, 3, 5, 4});  // normal (-height, 0, -left_eave): -X
+    return mesh;
+  };
+  const auto parted = [](const PolygonMesh& mesh, std::vector<int>& labels) {
+    const MeshAdjacency adjacency = mesh_adjacency(mesh.faces, static_cast<int>(mesh.vertices.rows()));
+    return part_opposite_neighbours(mesh, adjacency, face_neighbours(adjacency, mesh.faces.count()), labels);
+  };
+  // Ridge 1.5 high: the normals (0.83, 0, 0.55) and (-0.88, 0, 0.47) are
+  // 118 degrees apart. The right side is farther from +X and goes to +Z.
+  const PolygonMesh steep = roof(1.5, -0.8);
+  std::vector<int> labels{0, 1};
+  EXPECT_EQ(parted(steep, labels), (std::vector<int>{0}));
+  EXPECT_EQ(labels, (std::vector<int>{4, 1}));
+  // The left side less steep, (-0.77, 0, 0.64): it moves.
+  const PolygonMesh mirrored = roof(1.5, -1.25);
+  labels = {0, 1};
+  EXPECT_EQ(parted(mirrored, labels), (std::vector<int>{1}));
+  EXPECT_EQ(labels, (std::vector<int>{0, 4}));
+  // Ridge 3 high: 143 degrees, folded in the input already; the pair stays.
+  const PolygonMesh folded = roof(3.0, -1.0);
+  labels = {0, 1};
+  EXPECT_TRUE(parted(folded, labels).empty());
+  EXPECT_EQ(labels, (std::vector<int>{0, 1}));
 }
 
 // A side of a box the labels gave to the top chart, flattened to nothing: no

@@ -269,6 +269,27 @@ TEST(Robust, FurtherRunsOpenTheNearestLabelsOfOrganicModels) {
   }
 }
 
+// Homer's nearest labels put +X beside -X across 3 edges the input bends by
+// less than 120 degrees: its runs, the last resort's included, end
+// untangled with those edges folded, and none was exact. With the faces
+// parted (keep_opposites_apart.h) the run is exact (docs/design.md section
+// 2.6, stage 9); without the last resort nothing changes.
+TEST(Robust, OppositeNeighboursArePartedWhenNoRunIsExact) {
+  const Model model = load("homer");
+  if (model.mesh.faces.count() == 0) GTEST_SKIP() << "homer is missing: run `make data`";
+  DeformOptions o = options(Variant::kRobust, 50);
+  const DeformResult r = deform(model.mesh, model.labels, o);
+  print("homer", "robust", r);
+  EXPECT_TRUE(r.converged);
+  EXPECT_LT(r.figures.normal_deviation_max_deg, o.tolerance_deg);
+  EXPECT_EQ(r.figures.flipped_faces, 0);
+  EXPECT_LE(r.figures.folded_edges, r.input_folded_edges);
+  EXPECT_LT(r.figures.collapsed_area, 0.005);
+  EXPECT_GE(r.relabelled_faces.size(), 3u);
+  o.last_resort = false;
+  EXPECT_FALSE(deform(model.mesh, model.labels, o).converged);
+}
+
 // Without retrying refused rounds (the coarse route's coarse run), the
 // further runs after a kept run whose rounds were refused go to the
 // untangling at once, a single flat solve each. Triceratops, nearest labels:
