@@ -382,8 +382,9 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
         gradient.tail(gradient.size() - free_count).setZero();  // held
         return value;
       };
-      const LbfgsResult run =
-          minimize_lbfgs(objective, at, result.untangled ? kPolishIterations : kIterationsPerRound, 1e-9, 1e-8);
+      const LbfgsResult run = minimize_lbfgs(objective, at, result.untangled ? kPolishIterations : kIterationsPerRound,
+                                             1e-9, 1e-8, kLbfgsMemory, stop);
+      result.stopped = result.stopped || run.stopped;
       result.iterations += run.iterations;
       return run.value;
     }
@@ -449,7 +450,7 @@ UntangledCharts untangle_flat_charts(const Vertices& input, const Vertices& flat
     NewtonMinimizer newton;
     if (newton_rounds && static_cast<long>(local.size()) >= kLbfgsFirstFrom)
       minimize_over(local, z, free_count, newton, true);
-    minimize_over(local, z, free_count, newton);
+    if (!result.stopped) minimize_over(local, z, free_count, newton);
     for (int i = 0; i < free_count; ++i) y[order[i]] = z[i];
   };
 

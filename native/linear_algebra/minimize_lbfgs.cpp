@@ -1,5 +1,6 @@
 #include "linear_algebra/minimize_lbfgs.h"
 
+#include <chrono>
 #include <cmath>
 #include <deque>
 #include <vector>
@@ -9,14 +10,25 @@
 namespace polycube {
 
 LbfgsResult minimize_lbfgs(const Objective& objective, Eigen::VectorXd& x, int max_iterations,
-                           double gradient_tolerance, double relative_tolerance, int memory) {
+                           double gradient_tolerance, double relative_tolerance, int memory,
+                           const std::function<bool()>& stop) {
+  using Clock = std::chrono::steady_clock;
   LbfgsResult result;
+  Clock::time_point polled;
   Eigen::VectorXd gradient(x.size()), next_gradient(x.size());
   double value = objective(x, gradient);
   std::deque<Eigen::VectorXd> steps, changes;  // s_k and y_k, newest last
   std::deque<double> rho;
   std::vector<double> alpha(memory);
   for (; result.iterations < max_iterations; ++result.iterations) {
+    if (stop && (result.iterations == 0 ||
+                 std::chrono::duration<double>(Clock::now() - polled).count() >= kLbfgsStopPollSeconds)) {
+      if (stop()) {
+        result.stopped = true;
+        break;
+      }
+      polled = Clock::now();
+    }
     if (!std::isfinite(value) || gradient.lpNorm<Eigen::Infinity>() < gradient_tolerance) {
       result.converged = std::isfinite(value);
       break;

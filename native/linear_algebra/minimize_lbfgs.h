@@ -20,12 +20,23 @@ struct LbfgsResult {
   int iterations = 0;
   double value = 0.0;
   bool converged = false;  // the gradient or the decrease fell below the tolerance
+  bool stopped = false;    // `stop` answered true
 };
 
+// `stop` is polled before the first iteration and then at most this often:
+// a round of a million-triangle untangling takes seconds, and a stop that
+// calls into Python (the add-on's Esc) costs more than an iteration of a
+// small mesh.
+constexpr double kLbfgsStopPollSeconds = 0.1;
+// The (s, y) pairs kept, by default.
+constexpr int kLbfgsMemory = 7;
+
 // Minimises from `x` in place. Stops after `max_iterations`, when the largest
-// gradient entry is below `gradient_tolerance`, or when an iteration lowers f
-// by less than `relative_tolerance` of |f|.
+// gradient entry is below `gradient_tolerance`, when an iteration lowers f
+// by less than `relative_tolerance` of |f|, or when `stop` (if given)
+// answers true: `x` is then the last iterate.
 LbfgsResult minimize_lbfgs(const Objective& objective, Eigen::VectorXd& x, int max_iterations,
-                           double gradient_tolerance = 1e-10, double relative_tolerance = 1e-10, int memory = 7);
+                           double gradient_tolerance = 1e-10, double relative_tolerance = 1e-10, int memory = kLbfgsMemory,
+                           const std::function<bool()>& stop = {});
 
 }  // namespace polycube

@@ -36,6 +36,31 @@ TEST(MinimizeLbfgs, FindsTheRosenbrockMinimum) {
   EXPECT_LT(r.iterations, 200);
 }
 
+// A stop is polled before the first iteration and ends the minimisation
+// there; one that never answers true changes nothing.
+TEST(MinimizeLbfgs, StopsWhenAsked) {
+  const Objective rosenbrock = [](const Eigen::VectorXd& x, Eigen::VectorXd& g) {
+    const double a = 1.0 - x[0], b = x[1] - x[0] * x[0];
+    g.resize(2);
+    g[0] = -2.0 * a - 400.0 * x[0] * b;
+    g[1] = 200.0 * b;
+    return a * a + 100.0 * b * b;
+  };
+  const Eigen::Vector2d start(-1.2, 1.0);
+  Eigen::VectorXd x = start;
+  LbfgsResult r = minimize_lbfgs(rosenbrock, x, 500, 1e-10, 0.0, kLbfgsMemory, [] { return true; });
+  EXPECT_TRUE(r.stopped);
+  EXPECT_EQ(r.iterations, 0);
+  EXPECT_TRUE(x == start);
+  Eigen::VectorXd y = start;
+  r = minimize_lbfgs(rosenbrock, y, 500, 1e-10, 0.0, kLbfgsMemory, [] { return false; });
+  x = start;
+  const LbfgsResult plain = minimize_lbfgs(rosenbrock, x, 500, 1e-10, 0.0);
+  EXPECT_FALSE(r.stopped);
+  EXPECT_EQ(r.iterations, plain.iterations);
+  EXPECT_TRUE(x == y);
+}
+
 struct Block {
   Vertices vertices;
   Triangles triangles;
@@ -354,6 +379,27 @@ TEST(UntangleFlatCharts, ALargeLocalRoundStartsWithLbfgsAndNewtonFinishes) {
   // Newton alone: 7 factorisations of the round's 105,800 triangles (4.2
   // s); after L-BFGS's 82 iterations, one (1.7 s).
   EXPECT_LE(u.factorizations, 3);
+}
+
+// A stop asked for during a round is seen inside its L-BFGS iterations, not
+// once the round is over (at a million triangles, seconds later): the
+// block above, stopped after the first poll, ends refused before L-BFGS's
+// first iteration and without a factorisation (the round whole: 82
+// iterations, then Newton's).
+TEST(UntangleFlatCharts, StopsInsideARound) {
+  const Block b = block(230, 230, 1);
+  int moved = 0;
+  const Vertices crushed = top_moved(
+      b, 1.0, [](double x, double y) { return std::fmod(x, 4.0) == 2.0 && std::fmod(y, 4.0) == 2.0; }, 1.5, moved);
+  int polls = 0;
+  const UntangledCharts u =
+      untangle_flat_charts(b.vertices, crushed, b.triangles, b.labels, kUntangleRounds, kUntangleLocalShare, {},
+                           UntangleMinimiser::newton, [&polls] { return ++polls > 1; }, {}, UntangleStart::local_only);
+  EXPECT_TRUE(u.stopped);
+  EXPECT_TRUE(u.refused);
+  EXPECT_FALSE(u.untangled);
+  EXPECT_EQ(u.iterations, 0);
+  EXPECT_EQ(u.factorizations, 0);
 }
 
 TEST(UntangleFlatCharts, StopsOnceTheCollapsesPassTheCallersBound) {
