@@ -36,7 +36,7 @@ constexpr int kLbfgsMemory = 7;
 // by less than `relative_tolerance` of |f|, or when `stop` (if given)
 // answers true: `x` is then the last iterate.
 LbfgsResult minimize_lbfgs(const Objective& objective, Eigen::VectorXd& x, int max_iterations,
-                           double gradient_tolerance = 1e-10, double relative_tolerance = 1e-10, int memory = kLbfgsMemory,
-                           const std::function<bool()>& stop = {});
+                           double gradient_tolerance = 1e-10, double relative_tolerance = 1e-10,
+                           int memory = kLbfgsMemory, const std::function<bool()>& stop = {});
 
 }  // namespace polycube

@@ -19,14 +19,16 @@
 namespace polycube {
 namespace {
 
+// Rosenbrock's function, its minimum 0 at (1, 1) along a curved valley.
+double rosenbrock(const Eigen::VectorXd& x, Eigen::VectorXd& g) {
+  const double a = 1.0 - x[0], b = x[1] - x[0] * x[0];
+  g.resize(2);
+  g[0] = -2.0 * a - 400.0 * x[0] * b;
+  g[1] = 200.0 * b;
+  return a * a + 100.0 * b * b;
+}
+
 TEST(MinimizeLbfgs, FindsTheRosenbrockMinimum) {
-  const Objective rosenbrock = [](const Eigen::VectorXd& x, Eigen::VectorXd& g) {
-    const double a = 1.0 - x[0], b = x[1] - x[0] * x[0];
-    g.resize(2);
-    g[0] = -2.0 * a - 400.0 * x[0] * b;
-    g[1] = 200.0 * b;
-    return a * a + 100.0 * b * b;
-  };
   Eigen::VectorXd x(2);
   x << -1.2, 1.0;
   const LbfgsResult r = minimize_lbfgs(rosenbrock, x, 500, 1e-10, 0.0);
@@ -39,13 +41,6 @@ TEST(MinimizeLbfgs, FindsTheRosenbrockMinimum) {
 // A stop is polled before the first iteration and ends the minimisation
 // there; one that never answers true changes nothing.
 TEST(MinimizeLbfgs, StopsWhenAsked) {
-  const Objective rosenbrock = [](const Eigen::VectorXd& x, Eigen::VectorXd& g) {
-    const double a = 1.0 - x[0], b = x[1] - x[0] * x[0];
-    g.resize(2);
-    g[0] = -2.0 * a - 400.0 * x[0] * b;
-    g[1] = 200.0 * b;
-    return a * a + 100.0 * b * b;
-  };
   const Eigen::Vector2d start(-1.2, 1.0);
   Eigen::VectorXd x = start;
   LbfgsResult r = minimize_lbfgs(rosenbrock, x, 500, 1e-10, 0.0, kLbfgsMemory, [] { return true; });
