@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "cli/flush_stdout.h"
 #include "mesh/mesh.h"
 
 namespace polycube {
@@ -64,7 +65,11 @@ bool parse_arguments(CLI::App& app, const std::vector<std::string>& args) {
   try {
     app.parse(std::vector<std::string>(args.rbegin(), args.rend()));  // CLI11 takes them last first
   } catch (const CLI::CallForHelp&) {
-    std::fputs(app.help().c_str(), stdout);
+    // Through print_line: a help longer than stdout's buffer fails while
+    // writing, and only there does errno say why.
+    std::string help = app.help();
+    if (!help.empty() && help.back() == '\n') help.pop_back();
+    print_line(help);
     return false;
   } catch (const CLI::ArgumentMismatch& e) {
     const std::string what = e.what();
