@@ -192,6 +192,13 @@ double collapsed_polygon_area(const PolygonMesh& mesh, const Triangulation& tria
   return collapsed / total_before;
 }
 
+// `faces` joined by `more`, ascending, each once (DeformResult::relabelled_faces).
+void add_faces(std::vector<int>& faces, const std::vector<int>& more) {
+  faces.insert(faces.end(), more.begin(), more.end());
+  std::sort(faces.begin(), faces.end());
+  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+}
+
 // `again` (a silent run) replaces `result`: to the caller it is one more
 // iteration, seen once by the callback, its own iterations counted in
 // `second_run_iterations`; its figures against the labels the caller gave.
@@ -258,9 +265,7 @@ bool keep_if_better(const PolygonMesh& mesh, const RerunMesh& shared, const std:
   std::vector<int> relabelled = result.relabelled_faces;
   for (size_t f = 0; f < moved.size(); ++f)
     if (moved[f] != result.labels[f]) relabelled.push_back(static_cast<int>(f));
-  relabelled.insert(relabelled.end(), again.relabelled_faces.begin(), again.relabelled_faces.end());
-  std::sort(relabelled.begin(), relabelled.end());
-  relabelled.erase(std::unique(relabelled.begin(), relabelled.end()), relabelled.end());
+  add_faces(relabelled, again.relabelled_faces);
   again.relabelled_faces = std::move(relabelled);
   keep_as_next_iteration(mesh, shared.triangulation, labels, callback, std::move(again), result);
   return true;
@@ -560,10 +565,7 @@ DeformResult deform(const PolygonMesh& input, const std::vector<int>& labels, co
       DeformResult again = silent_run(mesh, parted, unit_options, again_finished);
       if (again.converged) {
         finished = std::move(again_finished);
-        std::vector<int>& relabelled = again.relabelled_faces;
-        relabelled.insert(relabelled.end(), changed.begin(), changed.end());
-        std::sort(relabelled.begin(), relabelled.end());
-        relabelled.erase(std::unique(relabelled.begin(), relabelled.end()), relabelled.end());
+        add_faces(again.relabelled_faces, changed);
         keep_as_next_iteration(mesh, shared->triangulation, labels, unit_callback, std::move(again), result);
       } else {
         add_cost(result, again);

@@ -80,7 +80,7 @@ std::vector<int> part_opposite_neighbours(const PolygonMesh& mesh, const MeshAdj
       const int f = adjacency.edge_faces[adjacency.edge_offsets[e]];
       const int g = adjacency.edge_faces[adjacency.edge_offsets[e] + 1];
       // A fold of the input's own may stay one (the figures allow as many).
-      if (labels[f] != (labels[g] ^ 1) || labels[f] < 0 || normal[f].dot(normal[g]) < -0.5) continue;
+      if (labels[f] != (labels[g] ^ 1) || normal[f].dot(normal[g]) < -0.5) continue;
       const int h = fit(f, labels[f]) < fit(g, labels[g]) ? f : g;
       const int to = nearest_opposite_none(neighbours, labels, h, normal[h]);
       if (to < 0) continue;
